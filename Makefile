@@ -1,0 +1,35 @@
+# The two commands of the README, and a few more for developers.
+#   make run       install what is missing, build, render the default scene
+#   make test      install what is missing, build with -Werror, run the tests
+#   make test-asan the test suite under AddressSanitizer + UBSan
+BUILD ?= build
+JOBS ?= $(shell nproc)
+SCENE ?= scenes/teapot_spot.json
+OUT ?= out
+
+.PHONY: all bootstrap build run test test-asan clean
+
+all: build
+
+bootstrap:
+	@tools/bootstrap.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DSHAFTS_WERROR=ON
+
+build: bootstrap $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@tools/run_default.sh $(BUILD) $(SCENE) $(OUT)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+test-asan: bootstrap
+	cmake -S . -B $(BUILD)-asan -DSHAFTS_WERROR=ON -DSHAFTS_SANITIZE=ON
+	cmake --build $(BUILD)-asan -j $(JOBS)
+	cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf $(BUILD) $(BUILD)-asan

@@ -1,0 +1,41 @@
+/* Triangle meshes: loading mesh files through assimp, building heightfield
+ * grids, and tessellating analytic shapes for consumers that draw triangles. */
+#ifndef SH_MESH_H
+#define SH_MESH_H
+
+#include "sh_error.h"
+#include "sh_image.h"
+#include "sh_math.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An indexed triangle mesh with float positions. Counter-clockwise triangles
+ * (seen from outside) face outwards. */
+typedef struct sh_mesh {
+  int nverts, ntris;
+  float *positions;   /* 3 * nverts floats; owned */
+  unsigned *indices;  /* 3 * ntris indices; owned */
+} sh_mesh;
+
+/* Frees the arrays and zeroes the struct; safe on a zeroed struct. */
+void sh_mesh_free(sh_mesh *mesh);
+
+/* Loads every mesh of a file that assimp reads (OBJ, PLY, glTF, ...), node
+ * transforms applied, triangulated, into one mesh (caller frees with
+ * sh_mesh_free). A missing file is SH_ERR_IO; an unreadable one, or one
+ * with no triangles, SH_ERR_MESH. */
+sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err);
+
+/* Builds the heightfield of a grey image (its mean of R, G, B as height in
+ * [0, 1]) spanning the box [bmin, bmax]: vertex (i, j) of the image's pixel
+ * (column i, row j) sits at x = bmin.x + i/(w-1) * dx, z = bmin.z + j/(h-1)
+ * * dz, y = bmin.y + grey * dy. Two triangles per grid cell, facing +Y. */
+sh_status sh_mesh_heightfield(const sh_image *img, sh_vec3 bmin, sh_vec3 bmax,
+                              sh_mesh *mesh, sh_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

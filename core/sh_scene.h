@@ -1,0 +1,142 @@
+/* The in-memory scene: what a scene file (docs/scene-format.md) describes,
+ * validated, with defaults filled in, names resolved to indices, external
+ * files (meshes, images) loaded and derived light quantities computed.
+ *
+ * A scene is produced by sh_scene_load (sh_parse.h) and freed with
+ * sh_scene_free. Renderers and exporters only read it. */
+#ifndef SH_SCENE_H
+#define SH_SCENE_H
+
+#include "sh_error.h"
+#include "sh_image.h"
+#include "sh_math.h"
+#include "sh_mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sh_camera {
+  sh_vec3 position, look_at, up; /* up defaults to (0, 1, 0) */
+  double fov_y_deg;              /* full vertical field of view, (0, 180) */
+  int width, height;             /* pixels, >= 1 */
+} sh_camera;
+
+typedef enum sh_phase_type {
+  SH_PHASE_ISOTROPIC,
+  SH_PHASE_HENYEY_GREENSTEIN,
+  SH_PHASE_NISHITA_HAZY,
+  SH_PHASE_NISHITA_MURKY,
+  SH_PHASE_RAYLEIGH
+} sh_phase_type;
+
+typedef struct sh_phase {
+  sh_phase_type type;
+  double g; /* Henyey-Greenstein asymmetry, (-1, 1); 0 for the others */
+} sh_phase;
+
+typedef struct sh_medium {
+  int present;             /* 0: vacuum everywhere, the rest is unused */
+  sh_vec3 sigma_s, sigma_a; /* per unit length, >= 0 */
+  sh_vec3 sigma_t;          /* derived: sigma_s + sigma_a */
+  sh_phase phase;
+  sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax */
+} sh_medium;
+
+typedef enum sh_light_type {
+  SH_LIGHT_POINT,
+  SH_LIGHT_SPOT,
+  SH_LIGHT_DIRECTIONAL
+} sh_light_type;
+
+typedef struct sh_light {
+  sh_light_type type;
+  sh_vec3 position;   /* point, spot */
+  sh_vec3 direction;  /* unit; spot: the axis; directional: travel direction */
+  sh_vec3 intensity;  /* point, spot: W/sr (on the axis for spots) */
+  sh_vec3 irradiance; /* directional: W/m^2 normal to the direction */
+  double outer_deg, inner_deg, exponent; /* spot */
+
+  /* Light map (optional). For spots, `map_right` and `map_up` complete
+   * `direction` to the light's frame. For directional lights the pattern
+   * fills map_origin + s map_u + t map_v. */
+  int has_map;
+  char *map_file; /* resolved path; owned */
+  sh_image map;   /* linear RGB; owned */
+  sh_vec3 map_origin, map_u, map_v;
+  sh_vec3 map_right, map_up;
+
+  /* Derived by sh_light_prepare (sh_light.h). */
+  double cos_outer, cos_inner, tan_outer;
+  sh_vec3 map_normal; /* directional: unit normal of the map's plane */
+} sh_light;
+
+typedef struct sh_material {
+  char *name; /* owned */
+  sh_vec3 diffuse, specular;
+  double shininess; /* default 32 */
+  sh_vec3 reflect, transmit;
+  double ior; /* default 1 */
+  sh_vec3 emission;
+} sh_material;
+
+typedef enum sh_shape_type {
+  SH_SHAPE_MESH,
+  SH_SHAPE_SPHERE,
+  SH_SHAPE_BOX,
+  SH_SHAPE_CYLINDER,
+  SH_SHAPE_QUAD,
+  SH_SHAPE_HEIGHTFIELD
+} sh_shape_type;
+
+typedef struct sh_shape {
+  sh_shape_type type;
+  int material;        /* index into sh_scene.materials */
+  sh_mat4 xform, inv;  /* object to world and back; identity by default */
+  sh_vec3 center;      /* sphere */
+  double radius;       /* sphere, cylinder */
+  sh_vec3 bmin, bmax;  /* box, heightfield */
+  sh_vec3 base, top;   /* cylinder */
+  int caps;            /* cylinder, default 1 */
+  sh_vec3 corner, u, v; /* quad */
+  char *file;          /* mesh file or heightfield image, resolved; owned */
+  sh_mesh mesh;        /* mesh, heightfield: object-space triangles; owned */
+} sh_shape;
+
+/* Per-renderer defaults from the scene's `render` object; command-line
+ * options override them. */
+typedef struct sh_render_settings {
+  int spp;          /* reference: in-scattering samples per pixel, default 16 */
+  int max_depth;    /* Whitted recursion limit, default 5 */
+  unsigned seed;    /* default 0 */
+  double exposure;  /* PNG exposure in stops, default 0 */
+} sh_render_settings;
+
+typedef struct sh_scene {
+  char *file; /* the scene file's path as given; owned */
+  sh_camera camera;
+  sh_vec3 background, ambient;
+  sh_medium medium;
+  int nlights;
+  sh_light *lights;
+  int nmaterials;
+  sh_material *materials;
+  int nshapes;
+  sh_shape *shapes;
+  sh_render_settings render;
+} sh_scene;
+
+/* Frees everything the scene owns, then the scene. NULL is allowed. */
+void sh_scene_free(sh_scene *scene);
+
+/* True if any material has a non-black transmit colour. */
+int sh_scene_has_semitransparent(const sh_scene *scene);
+
+/* The world-space box that holds every shape and light position (and the
+ * medium's bounds). */
+void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
