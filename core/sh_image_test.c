@@ -158,7 +158,8 @@ static void write_chunk(FILE *f, const char *type, const unsigned char *data,
   put32(buf, (unsigned long)len);
   fwrite(buf, 1, 4, f);
   memcpy(buf, type, 4);
-  memcpy(buf + 4, data, len);
+  if (len)
+    memcpy(buf + 4, data, len);
   fwrite(buf, 1, 4 + len, f);
   put32(buf + 200, crc(buf, 4 + len));
   fwrite(buf + 200, 1, 4, f);

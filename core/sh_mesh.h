@@ -1,5 +1,6 @@
-/* Triangle meshes: loading mesh files through assimp, building heightfield
- * grids, and tessellating analytic shapes for consumers that draw triangles. */
+/* Triangle meshes: loading mesh files through assimp and building heightfield
+ * grids. Tessellating analytic shapes for consumers that draw triangles is
+ * in sh_tessellate.h (it needs sh_shape, which sh_scene.h defines). */
 #ifndef SH_MESH_H
 #define SH_MESH_H
 
@@ -28,10 +29,12 @@ void sh_mesh_free(sh_mesh *mesh);
  * with no triangles, SH_ERR_MESH. */
 sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err);
 
-/* Builds the heightfield of a grey image (its mean of R, G, B as height in
- * [0, 1]) spanning the box [bmin, bmax]: vertex (i, j) of the image's pixel
+/* Builds the heightfield of a grey image (its mean of R, G, B, clamped to
+ * [0, 1], as height) spanning the box [bmin, bmax]: vertex (i, j) of the image's pixel
  * (column i, row j) sits at x = bmin.x + i/(w-1) * dx, z = bmin.z + j/(h-1)
- * * dz, y = bmin.y + grey * dy. Two triangles per grid cell, facing +Y. */
+ * * dz, y = bmin.y + grey * dy. Two triangles per grid cell, facing +Y.
+ * The image needs at least 2x2 pixels and the box min < max in x and z,
+ * min <= max in y; otherwise SH_ERR_ARG. */
 sh_status sh_mesh_heightfield(const sh_image *img, sh_vec3 bmin, sh_vec3 bmax,
                               sh_mesh *mesh, sh_error *err);
 

@@ -1,0 +1,180 @@
+/* Triangle meshes: files through assimp's C API, and heightfields. assimp
+ * reads OBJ, PLY, glTF, STL, FBX and many more behind one call, applies the
+ * node transforms and triangulates polygons, so the loader stays small. */
+#include "sh_mesh.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+void sh_mesh_free(sh_mesh *mesh) {
+  if (!mesh)
+    return;
+  free(mesh->positions);
+  free(mesh->indices);
+  memset(mesh, 0, sizeof *mesh);
+}
+
+/* Allocates the arrays of a mesh of nverts vertices and ntris triangles. */
+static sh_status sh__mesh_alloc(sh_mesh *mesh, size_t nverts, size_t ntris,
+                                const char *what, sh_error *err) {
+  memset(mesh, 0, sizeof *mesh);
+  if (nverts > (size_t)INT_MAX / 3 || ntris > (size_t)INT_MAX / 3)
+    return sh_error_set(err, SH_ERR_MESH,
+                        "%s has too many vertices or triangles (%zu, %zu)",
+                        what, nverts, ntris);
+  mesh->positions = malloc((nverts ? nverts : 1) * 3 * sizeof(float));
+  mesh->indices = malloc((ntris ? ntris : 1) * 3 * sizeof(unsigned));
+  if (!mesh->positions || !mesh->indices) {
+    sh_mesh_free(mesh);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory for %s", what);
+  }
+  mesh->nverts = (int)nverts;
+  mesh->ntris = (int)ntris;
+  return SH_OK;
+}
+
+sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err) {
+  if (!mesh)
+    return sh_error_set(err, SH_ERR_ARG, "sh_mesh_load was given no mesh");
+  memset(mesh, 0, sizeof *mesh);
+  if (!path || !*path)
+    return sh_error_set(err, SH_ERR_ARG, "sh_mesh_load was given no path");
+
+  /* assimp reports a missing file like any other failure: tell them apart
+   * first. */
+  struct stat st;
+  if (stat(path, &st) != 0 || access(path, R_OK) != 0) {
+    int e = errno;
+    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
+                        strerror(e));
+  }
+  if (S_ISDIR(st.st_mode))
+    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
+                        strerror(EISDIR));
+
+  const struct aiScene *scene =
+      aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                             aiProcess_PreTransformVertices |
+                             aiProcess_SortByPType);
+  if (!scene) {
+    const char *msg = aiGetErrorString();
+    return sh_error_set(err, SH_ERR_MESH, "cannot load mesh '%s': %s", path,
+                        msg && *msg ? msg : "assimp could not read it");
+  }
+
+  /* Count the triangles of every mesh; points and lines are skipped. */
+  size_t nverts = 0, ntris = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+    const struct aiMesh *am = scene->mMeshes[m];
+    size_t t = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++)
+      if (am->mFaces[f].mNumIndices == 3)
+        t++;
+    if (t) {
+      nverts += am->mNumVertices;
+      ntris += t;
+    }
+  }
+  if (ntris == 0) {
+    aiReleaseImport(scene);
+    return sh_error_set(err, SH_ERR_MESH,
+                        "cannot load mesh '%s': it has no triangles", path);
+  }
+  sh_status s = sh__mesh_alloc(mesh, nverts, ntris, path, err);
+  if (s != SH_OK) {
+    aiReleaseImport(scene);
+    return s;
+  }
+
+  size_t v0 = 0, t0 = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; m++) {
+    const struct aiMesh *am = scene->mMeshes[m];
+    size_t t = 0;
+    for (unsigned f = 0; f < am->mNumFaces; f++) {
+      const struct aiFace *face = &am->mFaces[f];
+      if (face->mNumIndices != 3)
+        continue;
+      for (int k = 0; k < 3; k++) {
+        unsigned idx = face->mIndices[k];
+        if (idx >= am->mNumVertices) {
+          aiReleaseImport(scene);
+          sh_mesh_free(mesh);
+          return sh_error_set(err, SH_ERR_MESH,
+                              "cannot load mesh '%s': a face refers to "
+                              "vertex %u of %u",
+                              path, idx, am->mNumVertices);
+        }
+        mesh->indices[3 * (t0 + t) + k] = (unsigned)(v0 + idx);
+      }
+      t++;
+    }
+    if (!t)
+      continue;
+    for (unsigned v = 0; v < am->mNumVertices; v++) {
+      float *p = mesh->positions + 3 * (v0 + v);
+      p[0] = am->mVertices[v].x;
+      p[1] = am->mVertices[v].y;
+      p[2] = am->mVertices[v].z;
+    }
+    v0 += am->mNumVertices;
+    t0 += t;
+  }
+  aiReleaseImport(scene);
+  return SH_OK;
+}
+
+sh_status sh_mesh_heightfield(const sh_image *img, sh_vec3 bmin, sh_vec3 bmax,
+                              sh_mesh *mesh, sh_error *err) {
+  if (!mesh)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "sh_mesh_heightfield was given no mesh");
+  memset(mesh, 0, sizeof *mesh);
+  if (!img || !img->rgb || img->width < 2 || img->height < 2)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "a heightfield image needs at least 2x2 pixels");
+  if (!(bmin.x < bmax.x && bmin.z < bmax.z && bmin.y <= bmax.y))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "a heightfield's box needs min < max in x and z and "
+                        "min <= max in y");
+  int w = img->width, h = img->height;
+  size_t nv = (size_t)w * (size_t)h;
+  size_t nt = 2 * (size_t)(w - 1) * (size_t)(h - 1);
+  sh_status s = sh__mesh_alloc(mesh, nv, nt, "the heightfield", err);
+  if (s != SH_OK)
+    return s;
+  double dx = bmax.x - bmin.x, dy = bmax.y - bmin.y, dz = bmax.z - bmin.z;
+  for (int j = 0; j < h; j++)
+    for (int i = 0; i < w; i++) {
+      const float *px = img->rgb + 3 * ((size_t)j * w + i);
+      double grey = sh_clamp((px[0] + (double)px[1] + px[2]) / 3.0, 0.0, 1.0);
+      if (grey != grey)
+        grey = 0;
+      float *p = mesh->positions + 3 * ((size_t)j * w + i);
+      p[0] = (float)(bmin.x + (double)i / (w - 1) * dx);
+      p[1] = (float)(bmin.y + grey * dy);
+      p[2] = (float)(bmin.z + (double)j / (h - 1) * dz);
+    }
+  /* Cell corners a = (i, j), b = (i+1, j), c = (i, j+1), d = (i+1, j+1):
+   * (a, c, b) and (b, c, d) are counter-clockwise seen from +Y. */
+  unsigned *t = mesh->indices;
+  for (int j = 0; j + 1 < h; j++)
+    for (int i = 0; i + 1 < w; i++) {
+      unsigned a = (unsigned)(j * w + i), b = a + 1;
+      unsigned c = a + (unsigned)w, d = c + 1;
+      *t++ = a;
+      *t++ = c;
+      *t++ = b;
+      *t++ = b;
+      *t++ = c;
+      *t++ = d;
+    }
+  return SH_OK;
+}
