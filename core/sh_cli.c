@@ -1,0 +1,84 @@
+#include "sh_cli.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "sh_file.h"
+
+int sh_cli_int(const char *tool, const char *option, const char *text,
+               long lo, long hi, long *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = text ? strtol(text, &end, 10) : 0;
+  if (!text || end == text || *end || errno || v < lo || v > hi) {
+    fprintf(stderr, "%s: %s expects an integer in [%ld, %ld], got '%s'\n",
+            tool, option, lo, hi, text ? text : "(nothing)");
+    return 0;
+  }
+  *out = v;
+  return 1;
+}
+
+int sh_cli_double(const char *tool, const char *option, const char *text,
+                  double *out) {
+  char *end = NULL;
+  double v = text ? strtod(text, &end) : 0;
+  if (!text || end == text || *end || !isfinite(v)) {
+    fprintf(stderr, "%s: %s expects a finite number, got '%s'\n", tool,
+            option, text ? text : "(nothing)");
+    return 0;
+  }
+  *out = v;
+  return 1;
+}
+
+int sh_cli_report(const char *tool, const sh_error *err) {
+  char buf[2048];
+  sh_error_format(err, buf, sizeof buf);
+  fprintf(stderr, "%s: error: %s\n", tool, buf);
+  return sh_exit_code(err->status);
+}
+
+struct sh_stats {
+  json_t *obj;
+};
+
+sh_stats *sh_stats_new(void) {
+  sh_stats *s = malloc(sizeof *s);
+  if (!s) return NULL;
+  s->obj = json_object();
+  if (!s->obj) {
+    free(s);
+    return NULL;
+  }
+  return s;
+}
+
+void sh_stats_num(sh_stats *s, const char *key, double value) {
+  if (s) json_object_set_new(s->obj, key, json_real(value));
+}
+
+void sh_stats_str(sh_stats *s, const char *key, const char *value) {
+  if (s) json_object_set_new(s->obj, key, json_string(value));
+}
+
+sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err) {
+  if (!s) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  char *text = json_dumps(s->obj, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+  if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  size_t n = 0;
+  while (text[n]) n++;
+  text[n] = '\n'; /* replaces the terminator; the size below includes it */
+  sh_status st = sh_file_write_atomic(path, text, n + 1, err);
+  free(text);
+  return st;
+}
+
+void sh_stats_free(sh_stats *s) {
+  if (!s) return;
+  json_decref(s->obj);
+  free(s);
+}

@@ -1,0 +1,38 @@
+/* Helpers for the command-line tools: option values with clear errors,
+ * reporting a library error, and the --stats JSON file. */
+#ifndef SH_CLI_H
+#define SH_CLI_H
+
+#include "sh_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Parses an integer option value in [lo, hi]. On failure prints
+ * "TOOL: OPTION expects an integer in [lo, hi], got 'text'" and returns 0. */
+int sh_cli_int(const char *tool, const char *option, const char *text,
+               long lo, long hi, long *out);
+/* Parses a finite number option value. */
+int sh_cli_double(const char *tool, const char *option, const char *text,
+                  double *out);
+
+/* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
+ * status for it (sh_exit_code). */
+int sh_cli_report(const char *tool, const sh_error *err);
+
+/* A flat statistics record written as a JSON object. Keys must be
+ * identifiers; values numbers or strings. */
+typedef struct sh_stats sh_stats;
+sh_stats *sh_stats_new(void);
+void sh_stats_num(sh_stats *s, const char *key, double value);
+void sh_stats_str(sh_stats *s, const char *key, const char *value);
+/* Writes the record atomically to path. */
+sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err);
+/* Frees the record; NULL is allowed. */
+void sh_stats_free(sh_stats *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,49 @@
+#include "sh_file.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
+                               sh_error *err) {
+  size_t n = strlen(path);
+  char *tmp = malloc(n + 16);
+  if (!tmp) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  snprintf(tmp, n + 16, "%s.tmpXXXXXX", path);
+  int fd = mkstemp(tmp);
+  if (fd < 0) {
+    sh_status st = sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
+                                strerror(errno));
+    free(tmp);
+    return st;
+  }
+  fchmod(fd, 0644); /* mkstemp makes 0600; outputs are for everyone */
+  FILE *f = fdopen(fd, "wb");
+  int ok = f && fwrite(data, 1, size, f) == size;
+  if (f) ok = (fclose(f) == 0) && ok;
+  else close(fd);
+  if (ok && rename(tmp, path) != 0) ok = 0;
+  if (!ok) {
+    int e = errno;
+    unlink(tmp);
+    free(tmp);
+    return sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
+                        strerror(e));
+  }
+  free(tmp);
+  return SH_OK;
+}
+
+void sh_file_extension(const char *path, char *buf, size_t size) {
+  const char *dot = strrchr(path, '.');
+  const char *slash = strrchr(path, '/');
+  buf[0] = '\0';
+  if (!dot || (slash && dot < slash) || size == 0) return;
+  size_t i = 0;
+  for (dot++; *dot && i + 1 < size; dot++) buf[i++] = (char)tolower((unsigned char)*dot);
+  buf[i] = '\0';
+}

@@ -1,0 +1,26 @@
+/* Small file helpers shared by the tools. */
+#ifndef SH_FILE_H
+#define SH_FILE_H
+
+#include <stddef.h>
+
+#include "sh_error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Writes `size` bytes to `path` atomically: into a temporary file in the
+ * same directory, flushed, then renamed over `path`. On failure nothing is
+ * left behind and SH_ERR_IO is returned. */
+sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
+                               sh_error *err);
+
+/* The extension of `path` after its last dot, lower-cased into buf (empty
+ * if there is none). */
+void sh_file_extension(const char *path, char *buf, size_t size);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

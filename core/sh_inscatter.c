@@ -1,0 +1,138 @@
+#include "sh_inscatter.h"
+
+#include <math.h>
+
+#include "sh_light.h"
+#include "sh_medium.h"
+
+static int in_cone(const sh_light *l, sh_vec3 o, sh_vec3 d, double t) {
+  sh_vec3 v = sh_sub(sh_madd(o, d, t), l->position);
+  double z = sh_dot(v, l->direction);
+  return z >= 0 && z * z >= l->cos_outer * l->cos_outer * sh_dot(v, v);
+}
+
+int sh_light_clip(const sh_light *l, sh_vec3 o, sh_vec3 d, double t0,
+                  double t1, double *a, double *b) {
+  *a = t0;
+  *b = t1;
+  if (l->type != SH_LIGHT_SPOT || l->cos_outer <= 0) return t1 > t0;
+  /* The cone's boundary: f(t) = (v.a + t d.a)^2 - c^2 |v + t d|^2 = 0 and
+   * the apex plane v.a + t d.a = 0 split [t0, t1] into pieces; the front
+   * nappe is convex, so the pieces inside form one interval. */
+  sh_vec3 v = sh_sub(o, l->position), ax = l->direction;
+  double c2 = l->cos_outer * l->cos_outer;
+  double va = sh_dot(v, ax), da = sh_dot(d, ax);
+  double A = da * da - c2, B = va * da - c2 * sh_dot(v, d);
+  double C = va * va - c2 * sh_dot(v, v);
+  double cuts[6];
+  int n = 0;
+  cuts[n++] = t0;
+  if (fabs(A) > 1e-300) {
+    double disc = B * B - A * C;
+    if (disc >= 0) {
+      double s = sqrt(disc);
+      cuts[n++] = (-B - s) / A;
+      cuts[n++] = (-B + s) / A;
+    }
+  } else if (B != 0) {
+    cuts[n++] = -C / (2.0 * B);
+  }
+  if (da != 0) cuts[n++] = -va / da;
+  cuts[n++] = t1;
+  /* Sort the cuts, keep those inside [t0, t1]. */
+  for (int i = 1; i < n; i++)
+    for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; j--) {
+      double t = cuts[j];
+      cuts[j] = cuts[j - 1];
+      cuts[j - 1] = t;
+    }
+  double lo = INFINITY, hi = -INFINITY;
+  for (int i = 0; i + 1 < n; i++) {
+    double x0 = fmax(cuts[i], t0), x1 = fmin(cuts[i + 1], t1);
+    if (x1 <= x0) continue;
+    if (in_cone(l, o, d, 0.5 * (x0 + x1))) {
+      lo = fmin(lo, x0);
+      hi = fmax(hi, x1);
+    }
+  }
+  if (!(hi > lo)) return 0;
+  *a = lo;
+  *b = hi;
+  return 1;
+}
+
+/* Radiance scattered towards -d at x by one light, per unit length, with
+ * visibility and the light's transmittance; before the camera-side
+ * transmittance. Also returns the 1/r^2-free part via *r2 for point lights. */
+static sh_vec3 scatter_at(const sh_scene *scene, const sh_rt *rt,
+                          const sh_light *l, sh_vec3 x, sh_vec3 d,
+                          sh_rt_counters *c, double *r2) {
+  sh_vec3 wi;
+  double dist;
+  sh_vec3 e = sh_light_incident(l, x, &wi, &dist);
+  *r2 = dist * dist;
+  if (sh_is_black(e)) return e;
+  const sh_medium *m = &scene->medium;
+  double len = l->type == SH_LIGHT_DIRECTIONAL
+                   ? sh_medium_length_ray(m, x, wi)
+                   : sh_medium_length(m, x, l->position);
+  e = sh_mul(e, sh_medium_tr(m, len));
+  if (rt) {
+    double tmax = l->type == SH_LIGHT_DIRECTIONAL ? INFINITY : dist * (1.0 - 1e-7);
+    sh_vec3 vis = sh_rt_visibility(rt, x, wi, tmax, c);
+    if (sh_is_black(vis)) return vis;
+    e = sh_mul(e, vis);
+  }
+  double p = sh_phase_eval(&m->phase, sh_dot(wi, d));
+  return sh_scale(sh_mul(e, m->sigma_s), p);
+}
+
+sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
+                           const sh_light *l, sh_vec3 o, sh_vec3 d,
+                           double t0, double t1, int n, sh_rng *rng,
+                           sh_rt_counters *c, uint64_t *samples) {
+  sh_vec3 sum = sh_v3s(0.0);
+  double a, b;
+  if (n < 1 || !sh_light_clip(l, o, d, t0, t1, &a, &b)) return sum;
+  const sh_medium *m = &scene->medium;
+  if (samples) *samples += (uint64_t)n;
+  if (l->type == SH_LIGHT_DIRECTIONAL) {
+    /* Sample t with density proportional to exp(-k (t - a)), k the mean
+     * extinction: the camera-side transmittance. */
+    double k = (m->sigma_t.x + m->sigma_t.y + m->sigma_t.z) / 3.0;
+    double len = b - a, kl = k * len;
+    for (int i = 0; i < n; i++) {
+      double u = (i + sh_rng_next(rng)) / n, t, inv_pdf;
+      if (kl < 1e-6) {
+        t = a + u * len;
+        inv_pdf = len;
+      } else {
+        double norm = -expm1(-kl); /* 1 - exp(-k len) */
+        t = a - log1p(-u * norm) / k;
+        inv_pdf = norm / (k * exp(-k * (t - a)));
+      }
+      double r2;
+      sh_vec3 x = sh_madd(o, d, t);
+      sh_vec3 s = scatter_at(scene, rt, l, x, d, c, &r2);
+      sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), inv_pdf));
+    }
+  } else {
+    /* Equiangular sampling (Kulla and Fajardo 2012): density proportional
+     * to 1/r^2 along the ray. */
+    double bt = sh_dot(sh_sub(l->position, o), d);
+    double h = sh_length(sh_sub(sh_madd(o, d, bt), l->position));
+    h = fmax(h, 1e-9 * (fabs(bt) + 1.0));
+    double ta = atan2(a - bt, h), tb = atan2(b - bt, h);
+    for (int i = 0; i < n; i++) {
+      double u = (i + sh_rng_next(rng)) / n;
+      double t = bt + h * tan(ta + u * (tb - ta));
+      t = sh_clamp(t, a, b);
+      double r2;
+      sh_vec3 x = sh_madd(o, d, t);
+      sh_vec3 s = scatter_at(scene, rt, l, x, d, c, &r2);
+      double w = r2 * (tb - ta) / h;
+      sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), w));
+    }
+  }
+  return sh_scale(sum, 1.0 / n);
+}

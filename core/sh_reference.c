@@ -1,0 +1,215 @@
+#include "sh_reference.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sh_camera.h"
+#include "sh_inscatter.h"
+#include "sh_light.h"
+#include "sh_medium.h"
+#include "sh_progress.h"
+#include "sh_rt.h"
+
+typedef struct job {
+  const sh_scene *scene;
+  const sh_rt *rt;
+  const sh_reference_options *opt;
+  sh_camera_frame frame;
+  sh_image *img;
+  sh_progress progress;
+  int next_row; /* claimed atomically */
+} job;
+
+typedef struct worker {
+  job *job;
+  pthread_t thread;
+  sh_rt_counters counters;
+  uint64_t samples, camera_rays;
+} worker;
+
+static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng);
+
+/* Light arriving at surface point p (normal n facing the viewer) from every
+ * light, shaded with Lambert and Phong terms. */
+static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
+                            sh_vec3 n, sh_vec3 d) {
+  const sh_scene *scene = w->job->scene;
+  sh_vec3 sum = sh_v3s(0.0);
+  int has_spec = !sh_is_black(mat->specular);
+  if (sh_is_black(mat->diffuse) && !has_spec) return sum;
+  sh_vec3 origin = sh_rt_offset(p, n);
+  for (int i = 0; i < scene->nlights; i++) {
+    const sh_light *l = &scene->lights[i];
+    sh_vec3 wi;
+    double dist;
+    sh_vec3 e = sh_light_incident(l, p, &wi, &dist);
+    double cosl = sh_dot(n, wi);
+    if (cosl <= 0 || sh_is_black(e)) continue;
+    double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
+    sh_vec3 vis = sh_rt_visibility(w->job->rt, origin, wi, tmax, &w->counters);
+    if (sh_is_black(vis)) continue;
+    double len = isinf(dist) ? sh_medium_length_ray(&scene->medium, p, wi)
+                             : sh_medium_length(&scene->medium, p, l->position);
+    e = sh_mul(sh_mul(e, vis), sh_medium_tr(&scene->medium, len));
+    sh_vec3 f = sh_scale(mat->diffuse, SH_INV_PI * cosl);
+    if (has_spec) {
+      double rv = sh_dot(sh_reflect(sh_neg(wi), n), sh_neg(d));
+      if (rv > 0) f = sh_madd(f, mat->specular, pow(rv, mat->shininess));
+    }
+    sum = sh_add(sum, sh_mul(f, e));
+  }
+  return sum;
+}
+
+static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
+                     sh_rng *rng) {
+  const sh_scene *scene = w->job->scene;
+  const sh_material *mat = &scene->materials[scene->shapes[h->shape].material];
+  int entering = sh_dot(h->ng, d) < 0;
+  sh_vec3 n = entering ? h->ng : sh_neg(h->ng);
+  sh_vec3 L = sh_add(mat->emission, sh_mul(scene->ambient, mat->diffuse));
+  L = sh_add(L, direct_light(w, mat, h->p, n, d));
+  if (depth >= w->job->opt->max_depth) return L;
+  sh_vec3 reflected = sh_reflect(d, n);
+  if (!sh_is_black(mat->reflect))
+    L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset(h->p, n),
+                                             reflected, depth + 1, rng)));
+  if (!sh_is_black(mat->transmit)) {
+    /* Snell's law; the inside of a closed shape has index `ior`. Total
+     * internal reflection sends the transmitted weight along the mirror
+     * direction. */
+    double eta = entering ? 1.0 / mat->ior : mat->ior;
+    double ci = -sh_dot(n, d);
+    double k = 1.0 - eta * eta * (1.0 - ci * ci);
+    sh_vec3 dir, org;
+    if (k < 0) {
+      dir = reflected;
+      org = sh_rt_offset(h->p, n);
+    } else {
+      dir = sh_normalize(sh_madd(sh_scale(d, eta), n, eta * ci - sqrt(k)));
+      org = sh_rt_offset(h->p, sh_neg(n));
+    }
+    L = sh_add(L, sh_mul(mat->transmit, trace(w, org, dir, depth + 1, rng)));
+  }
+  return L;
+}
+
+static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
+  const sh_scene *scene = w->job->scene;
+  sh_hit h;
+  int hit = sh_rt_intersect(w->job->rt, o, d, 0.0, INFINITY, &h, &w->counters);
+  double tend = hit ? h.t : INFINITY;
+  sh_vec3 L = hit ? shade(w, &h, d, depth, rng) : scene->background;
+  const sh_medium *m = &scene->medium;
+  double t0, t1;
+  if (m->present && sh_box_clip(m->bmin, m->bmax, o, d, 0.0, tend, &t0, &t1)) {
+    L = sh_mul(L, sh_medium_tr(m, t1 - t0));
+    for (int i = 0; i < scene->nlights; i++)
+      L = sh_add(L, sh_inscatter_light(scene, w->job->rt, &scene->lights[i], o,
+                                       d, t0, t1, w->job->opt->spp, rng,
+                                       &w->counters, &w->samples));
+  }
+  return L;
+}
+
+static void *work(void *arg) {
+  worker *w = arg;
+  job *jb = w->job;
+  int width = jb->img->width, height = jb->img->height;
+  for (;;) {
+    if (jb->opt->cancel && *jb->opt->cancel) break;
+    int y = __atomic_fetch_add(&jb->next_row, 1, __ATOMIC_RELAXED);
+    if (y >= height) break;
+    for (int x = 0; x < width; x++) {
+      sh_rng rng;
+      sh_rng_seed(&rng, jb->opt->seed, (uint64_t)y * (uint64_t)width + x);
+      sh_vec3 d = sh_camera_dir(&jb->frame, x + 0.5, y + 0.5);
+      w->camera_rays++;
+      sh_vec3 L = trace(w, jb->frame.origin, d, 0, &rng);
+      float *px = jb->img->rgb + 3 * ((size_t)y * width + x);
+      px[0] = (float)L.x;
+      px[1] = (float)L.y;
+      px[2] = (float)L.z;
+    }
+    sh_progress_add(&jb->progress, 1);
+  }
+  return NULL;
+}
+
+sh_reference_options sh_reference_defaults(const sh_scene *scene) {
+  sh_reference_options o;
+  memset(&o, 0, sizeof o);
+  o.spp = scene->render.spp;
+  o.max_depth = scene->render.max_depth;
+  o.seed = scene->render.seed;
+  o.progress = 1;
+  return o;
+}
+
+sh_status sh_render_reference(const sh_scene *scene,
+                              const sh_reference_options *opt, sh_image *out,
+                              sh_reference_stats *stats, sh_error *err) {
+  if (opt->spp < 1 || opt->max_depth < 0 || opt->threads < 0)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "spp must be >= 1, max_depth and threads >= 0");
+  double start = sh_seconds();
+  sh_status st = sh_image_alloc(out, scene->camera.width, scene->camera.height,
+                                err);
+  if (st != SH_OK) return st;
+  job jb;
+  memset(&jb, 0, sizeof jb);
+  jb.scene = scene;
+  jb.opt = opt;
+  jb.img = out;
+  sh_camera_frame_init(&scene->camera, &jb.frame);
+  sh_rt *rt = NULL;
+  st = sh_rt_create(scene, &rt, err);
+  if (st != SH_OK) {
+    sh_image_free(out);
+    return st;
+  }
+  jb.rt = rt;
+  int nthreads = opt->threads;
+  if (nthreads == 0) {
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    nthreads = n > 0 ? (int)n : 1;
+  }
+  if (nthreads > out->height) nthreads = out->height;
+  worker *ws = calloc((size_t)nthreads, sizeof *ws);
+  if (!ws) {
+    sh_rt_free(rt);
+    sh_image_free(out);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  sh_progress_init(&jb.progress, "reference", out->height, opt->progress);
+  int started = 0;
+  for (int i = 0; i < nthreads; i++) {
+    ws[i].job = &jb;
+    if (i > 0 && pthread_create(&ws[i].thread, NULL, work, &ws[i]) != 0) break;
+    started++;
+  }
+  work(&ws[0]);
+  for (int i = 1; i < started; i++) pthread_join(ws[i].thread, NULL);
+  sh_progress_finish(&jb.progress);
+  if (stats) {
+    memset(stats, 0, sizeof *stats);
+    for (int i = 0; i < started; i++) {
+      stats->camera_rays += ws[i].camera_rays;
+      stats->closest_rays += ws[i].counters.closest;
+      stats->occlusion_rays += ws[i].counters.occlusion;
+      stats->medium_samples += ws[i].samples;
+    }
+    stats->threads = started;
+    stats->seconds = sh_seconds() - start;
+  }
+  free(ws);
+  sh_rt_free(rt);
+  if (opt->cancel && *opt->cancel) {
+    sh_image_free(out);
+    return sh_error_set(err, SH_ERR_CANCELLED, "rendering was cancelled");
+  }
+  return SH_OK;
+}

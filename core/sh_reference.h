@@ -1,0 +1,54 @@
+/* The reference renderer: Whitted ray tracing (direct light with hard
+ * shadows through semitransparent surfaces, mirror reflection, refraction
+ * weighted by k_t as in formula 2 of Debelov et al. 2008) plus single
+ * scattering in the homogeneous medium along every ray segment, seen
+ * directly and through reflection and refraction.
+ *
+ * Every pixel is sampled at its centre. The in-scattering integral is
+ * estimated per ray segment and light with `spp` stratified samples:
+ * equiangular sampling over the part of the segment inside a spot's cone
+ * for point and spot lights (the 1/r^2 cancels), transmittance-proportional
+ * sampling for directional lights. Accumulation is in double precision and
+ * every pixel seeds its own random stream, so the image depends only on the
+ * scene, spp and seed, not on the thread count. */
+#ifndef SH_REFERENCE_H
+#define SH_REFERENCE_H
+
+#include <stdint.h>
+
+#include "sh_error.h"
+#include "sh_image.h"
+#include "sh_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct sh_reference_options {
+  int spp;           /* in-scattering samples per segment and light, >= 1 */
+  int max_depth;     /* reflection/refraction recursion limit, >= 0 */
+  uint64_t seed;
+  int threads;       /* 0: one per online CPU */
+  int progress;      /* 1: progress bar on stderr when it is a terminal */
+  volatile int *cancel; /* optional: set to non-zero to stop early */
+} sh_reference_options;
+
+typedef struct sh_reference_stats {
+  double seconds;
+  uint64_t camera_rays, closest_rays, occlusion_rays, medium_samples;
+  int threads;
+} sh_reference_stats;
+
+/* Options from the scene's render settings, with threads = 0, progress on. */
+sh_reference_options sh_reference_defaults(const sh_scene *scene);
+
+/* Renders `scene` into `out`, which the call allocates at the camera's size
+ * (caller frees with sh_image_free). `stats` may be NULL. */
+sh_status sh_render_reference(const sh_scene *scene,
+                              const sh_reference_options *opt, sh_image *out,
+                              sh_reference_stats *stats, sh_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

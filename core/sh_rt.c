@@ -1,0 +1,437 @@
+#include "sh_rt.h"
+
+#include <embree3/rtcore.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sh_tessellate.h"
+
+/* One shape as Embree sees it: world-space triangles, or the exact shape
+ * in object space for the user-geometry callbacks. */
+typedef struct sh__prim {
+  const sh_shape *shape;
+  int analytic;
+  float *verts;      /* world-space triangle vertices, 3 floats each */
+  unsigned *indices; /* 3 per triangle */
+  int nverts, ntris;
+  /* Cylinder frame in object space. */
+  sh_vec3 axis;
+  double length;
+} sh__prim;
+
+struct sh_rt {
+  RTCDevice device;
+  RTCScene all, opaque, semi;
+  const sh_scene *scene;
+  sh__prim *prims;
+  int has_semi;
+  sh_status device_status;
+  char device_message[256];
+};
+
+static void on_device_error(void *user, enum RTCError code, const char *str) {
+  sh_rt *rt = user;
+  if (rt->device_status == SH_OK) {
+    rt->device_status = SH_ERR_DEVICE;
+    snprintf(rt->device_message, sizeof rt->device_message,
+             "Embree error %d: %s", (int)code, str ? str : "(no message)");
+  }
+}
+
+/* Ray-hit layout of a packet of N rays (struct-of-arrays floats), as in
+ * rtcore_ray.h, for use from C. */
+enum {
+  RAY_ORG_X, RAY_ORG_Y, RAY_ORG_Z, RAY_TNEAR, RAY_DIR_X, RAY_DIR_Y, RAY_DIR_Z,
+  RAY_TIME, RAY_TFAR, RAY_MASK, RAY_ID, RAY_FLAGS, HIT_NG_X, HIT_NG_Y,
+  HIT_NG_Z, HIT_U, HIT_V, HIT_PRIM, HIT_GEOM, HIT_INST
+};
+#define SOA(base, field, N, i) (((float *)(base))[(field) * (N) + (i)])
+#define SOA_U(base, field, N, i) (((unsigned *)(base))[(field) * (N) + (i)])
+
+/* The closest parameter t in (tnear, tfar) where the object-space ray
+ * o + t d meets the analytic shape; writes its object-space normal. */
+static int analytic_hit(const sh__prim *pr, sh_vec3 o, sh_vec3 d, double tnear,
+                        double tfar, double *t_out, sh_vec3 *n_out) {
+  const sh_shape *s = pr->shape;
+  double best = tfar;
+  int found = 0;
+  if (s->type == SH_SHAPE_SPHERE) {
+    sh_vec3 oc = sh_sub(o, s->center);
+    double a = sh_dot(d, d), b = sh_dot(oc, d);
+    double c = sh_dot(oc, oc) - s->radius * s->radius;
+    double disc = b * b - a * c;
+    if (disc < 0) return 0;
+    double sq = sqrt(disc);
+    /* Numerically stable roots. */
+    double q = b >= 0 ? -(b + sq) : -(b - sq);
+    double r0 = q / a, r1 = q != 0 ? c / q : r0;
+    if (r0 > r1) {
+      double t = r0;
+      r0 = r1;
+      r1 = t;
+    }
+    double roots[2] = {r0, r1};
+    for (int k = 0; k < 2; k++)
+      if (roots[k] > tnear && roots[k] < best) {
+        best = roots[k];
+        found = 1;
+        break;
+      }
+    if (found)
+      *n_out = sh_scale(sh_sub(sh_madd(o, d, best), s->center),
+                        1.0 / s->radius);
+  } else { /* cylinder */
+    sh_vec3 oc = sh_sub(o, s->base);
+    double op = sh_dot(oc, pr->axis), dp = sh_dot(d, pr->axis);
+    sh_vec3 operp = sh_madd(oc, pr->axis, -op), dperp = sh_madd(d, pr->axis, -dp);
+    double a = sh_dot(dperp, dperp), b = sh_dot(operp, dperp);
+    double c = sh_dot(operp, operp) - s->radius * s->radius;
+    double disc = b * b - a * c;
+    if (a > 0 && disc >= 0) {
+      double sq = sqrt(disc);
+      double roots[2] = {(-b - sq) / a, (-b + sq) / a};
+      for (int k = 0; k < 2; k++) {
+        double t = roots[k], h = op + t * dp;
+        if (t > tnear && t < best && h >= 0 && h <= pr->length) {
+          best = t;
+          found = 1;
+          *n_out = sh_scale(sh_madd(operp, dperp, t), 1.0 / s->radius);
+        }
+      }
+    }
+    if (s->caps && dp != 0) {
+      for (int k = 0; k < 2; k++) {
+        double h = k ? pr->length : 0.0;
+        double t = (h - op) / dp;
+        if (t > tnear && t < best) {
+          sh_vec3 q = sh_madd(operp, dperp, t);
+          if (sh_dot(q, q) <= s->radius * s->radius) {
+            best = t;
+            found = 1;
+            *n_out = k ? pr->axis : sh_neg(pr->axis);
+          }
+        }
+      }
+    }
+  }
+  if (found) *t_out = best;
+  return found;
+}
+
+static int analytic_query(const sh__prim *pr, const float *ray, unsigned N,
+                          unsigned i, double *t, sh_vec3 *n) {
+  sh_vec3 o = sh_v3(SOA(ray, RAY_ORG_X, N, i), SOA(ray, RAY_ORG_Y, N, i),
+                    SOA(ray, RAY_ORG_Z, N, i));
+  sh_vec3 d = sh_v3(SOA(ray, RAY_DIR_X, N, i), SOA(ray, RAY_DIR_Y, N, i),
+                    SOA(ray, RAY_DIR_Z, N, i));
+  const sh_shape *s = pr->shape;
+  sh_vec3 lo = sh_xform_point(&s->inv, o), ld = sh_xform_vector(&s->inv, d);
+  if (!analytic_hit(pr, lo, ld, SOA(ray, RAY_TNEAR, N, i),
+                    SOA(ray, RAY_TFAR, N, i), t, n))
+    return 0;
+  *n = sh_normalize(sh_xform_normal(&s->inv, *n));
+  return 1;
+}
+
+static void analytic_intersect(const struct RTCIntersectFunctionNArguments *a) {
+  const sh__prim *pr = a->geometryUserPtr;
+  float *rh = (float *)a->rayhit;
+  for (unsigned i = 0; i < a->N; i++) {
+    if (a->valid[i] != -1) continue;
+    double t;
+    sh_vec3 n;
+    if (!analytic_query(pr, rh, a->N, i, &t, &n)) continue;
+    SOA(rh, RAY_TFAR, a->N, i) = (float)t;
+    SOA(rh, HIT_NG_X, a->N, i) = (float)n.x;
+    SOA(rh, HIT_NG_Y, a->N, i) = (float)n.y;
+    SOA(rh, HIT_NG_Z, a->N, i) = (float)n.z;
+    SOA(rh, HIT_U, a->N, i) = 0.0f;
+    SOA(rh, HIT_V, a->N, i) = 0.0f;
+    SOA_U(rh, HIT_PRIM, a->N, i) = a->primID;
+    SOA_U(rh, HIT_GEOM, a->N, i) = a->geomID;
+    SOA_U(rh, HIT_INST, a->N, i) = RTC_INVALID_GEOMETRY_ID;
+  }
+}
+
+static void analytic_occluded(const struct RTCOccludedFunctionNArguments *a) {
+  const sh__prim *pr = a->geometryUserPtr;
+  float *ray = (float *)a->ray;
+  for (unsigned i = 0; i < a->N; i++) {
+    if (a->valid[i] != -1) continue;
+    double t;
+    sh_vec3 n;
+    if (analytic_query(pr, ray, a->N, i, &t, &n))
+      SOA(ray, RAY_TFAR, a->N, i) = -INFINITY;
+  }
+}
+
+static void analytic_bounds(const struct RTCBoundsFunctionArguments *a) {
+  const sh__prim *pr = a->geometryUserPtr;
+  const sh_shape *s = pr->shape;
+  sh_vec3 lo, hi;
+  if (s->type == SH_SHAPE_SPHERE) {
+    lo = sh_sub(s->center, sh_v3s(s->radius));
+    hi = sh_add(s->center, sh_v3s(s->radius));
+  } else {
+    lo = sh_sub(sh_vmin(s->base, s->top), sh_v3s(s->radius));
+    hi = sh_add(sh_vmax(s->base, s->top), sh_v3s(s->radius));
+  }
+  sh_vec3 wlo = sh_v3s(INFINITY), whi = sh_v3s(-INFINITY);
+  for (int k = 0; k < 8; k++) {
+    sh_vec3 c = sh_v3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
+                      k & 4 ? hi.z : lo.z);
+    sh_vec3 w = sh_xform_point(&s->xform, c);
+    wlo = sh_vmin(wlo, w);
+    whi = sh_vmax(whi, w);
+  }
+  /* Pad by a relative epsilon: the bounds must hold the float hits. */
+  double pad = 1e-6 * (sh_max3(sh_vmax(sh_neg(wlo), whi)) + 1.0);
+  a->bounds_o->lower_x = (float)(wlo.x - pad);
+  a->bounds_o->lower_y = (float)(wlo.y - pad);
+  a->bounds_o->lower_z = (float)(wlo.z - pad);
+  a->bounds_o->upper_x = (float)(whi.x + pad);
+  a->bounds_o->upper_y = (float)(whi.y + pad);
+  a->bounds_o->upper_z = (float)(whi.z + pad);
+}
+
+static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
+  pr->shape = s;
+  if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER) {
+    pr->analytic = 1;
+    if (s->type == SH_SHAPE_CYLINDER) {
+      sh_vec3 a = sh_sub(s->top, s->base);
+      pr->length = sh_length(a);
+      pr->axis = sh_scale(a, 1.0 / pr->length);
+    }
+    return SH_OK;
+  }
+  sh_mesh m = {0};
+  sh_status st = sh_mesh_tessellate(s, 0.0, &m, err);
+  if (st != SH_OK) return st;
+  pr->nverts = m.nverts;
+  pr->ntris = m.ntris;
+  pr->indices = m.indices;
+  pr->verts = m.positions;
+  for (int v = 0; v < m.nverts; v++) {
+    float *p = pr->verts + 3 * v;
+    sh_vec3 w = sh_xform_point(&s->xform, sh_v3(p[0], p[1], p[2]));
+    p[0] = (float)w.x;
+    p[1] = (float)w.y;
+    p[2] = (float)w.z;
+  }
+  return SH_OK;
+}
+
+static RTCGeometry make_geometry(sh_rt *rt, sh__prim *pr) {
+  RTCGeometry g;
+  if (pr->analytic) {
+    g = rtcNewGeometry(rt->device, RTC_GEOMETRY_TYPE_USER);
+    rtcSetGeometryUserPrimitiveCount(g, 1);
+    rtcSetGeometryUserData(g, pr);
+    rtcSetGeometryBoundsFunction(g, analytic_bounds, NULL);
+    rtcSetGeometryIntersectFunction(g, analytic_intersect);
+    rtcSetGeometryOccludedFunction(g, analytic_occluded);
+  } else {
+    g = rtcNewGeometry(rt->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *vb = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                        RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                        (size_t)pr->nverts);
+    unsigned *ib = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
+                                           RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned),
+                                           (size_t)pr->ntris);
+    if (!vb || !ib) {
+      rtcReleaseGeometry(g);
+      return NULL;
+    }
+    memcpy(vb, pr->verts, sizeof(float) * 3 * (size_t)pr->nverts);
+    memcpy(ib, pr->indices, sizeof(unsigned) * 3 * (size_t)pr->ntris);
+  }
+  rtcCommitGeometry(g);
+  return g;
+}
+
+static RTCScene new_scene(sh_rt *rt) {
+  RTCScene s = rtcNewScene(rt->device);
+  if (s) rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+  return s;
+}
+
+static int is_semi(const sh_scene *scene, const sh_shape *s) {
+  return !sh_is_black(scene->materials[s->material].transmit);
+}
+
+sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
+  *out = NULL;
+  sh_rt *rt = calloc(1, sizeof *rt);
+  if (!rt) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  rt->scene = scene;
+  rt->device = rtcNewDevice(NULL);
+  if (!rt->device) {
+    free(rt);
+    return sh_error_set(err, SH_ERR_DEVICE, "cannot create an Embree device");
+  }
+  rtcSetDeviceErrorFunction(rt->device, on_device_error, rt);
+  rt->prims = calloc((size_t)scene->nshapes + 1, sizeof *rt->prims);
+  rt->all = new_scene(rt);
+  rt->opaque = new_scene(rt);
+  rt->semi = new_scene(rt);
+  sh_status st = SH_OK;
+  if (!rt->prims || !rt->all || !rt->opaque || !rt->semi)
+    st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  for (int i = 0; st == SH_OK && i < scene->nshapes; i++) {
+    const sh_shape *s = &scene->shapes[i];
+    sh__prim *pr = &rt->prims[i];
+    st = prim_init(pr, s, err);
+    if (st != SH_OK) break;
+    int semi = is_semi(scene, s);
+    rt->has_semi |= semi;
+    RTCScene targets[2] = {rt->all, semi ? rt->semi : rt->opaque};
+    for (int k = 0; k < 2; k++) {
+      RTCGeometry g = make_geometry(rt, pr);
+      if (!g) {
+        st = sh_error_set(err, SH_ERR_DEVICE, "cannot create geometry");
+        break;
+      }
+      rtcAttachGeometryByID(targets[k], g, (unsigned)i);
+      rtcReleaseGeometry(g);
+    }
+  }
+  if (st == SH_OK) {
+    rtcCommitScene(rt->all);
+    rtcCommitScene(rt->opaque);
+    rtcCommitScene(rt->semi);
+    if (rt->device_status != SH_OK)
+      st = sh_error_set(err, rt->device_status, "%s", rt->device_message);
+  }
+  if (st != SH_OK) {
+    sh_rt_free(rt);
+    return st;
+  }
+  *out = rt;
+  return SH_OK;
+}
+
+void sh_rt_free(sh_rt *rt) {
+  if (!rt) return;
+  if (rt->all) rtcReleaseScene(rt->all);
+  if (rt->opaque) rtcReleaseScene(rt->opaque);
+  if (rt->semi) rtcReleaseScene(rt->semi);
+  if (rt->prims)
+    for (int i = 0; i < rt->scene->nshapes; i++) {
+      free(rt->prims[i].verts);
+      free(rt->prims[i].indices);
+    }
+  free(rt->prims);
+  if (rt->device) rtcReleaseDevice(rt->device);
+  free(rt);
+}
+
+static void set_ray(struct RTCRay *r, sh_vec3 o, sh_vec3 d, double tmin,
+                    double tmax) {
+  r->org_x = (float)o.x;
+  r->org_y = (float)o.y;
+  r->org_z = (float)o.z;
+  r->dir_x = (float)d.x;
+  r->dir_y = (float)d.y;
+  r->dir_z = (float)d.z;
+  r->tnear = (float)tmin;
+  r->tfar = tmax >= FLT_MAX ? INFINITY : (float)tmax;
+  r->time = 0.0f;
+  r->mask = 0xFFFFFFFFu;
+  r->id = 0;
+  r->flags = 0;
+}
+
+static int closest(RTCScene scene, const sh_rt *rt, sh_vec3 o, sh_vec3 d,
+                   double tmin, double tmax, sh_hit *hit) {
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  struct RTCRayHit rh;
+  set_ray(&rh.ray, o, d, tmin, tmax);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.Ng_x = rh.hit.Ng_y = rh.hit.Ng_z = 0.0f;
+  rh.hit.u = rh.hit.v = 0.0f;
+  rtcIntersect1(scene, &ctx, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
+  const sh__prim *pr = &rt->prims[rh.hit.geomID];
+  hit->shape = (int)rh.hit.geomID;
+  hit->t = rh.ray.tfar;
+  if (pr->analytic) {
+    hit->p = sh_madd(o, d, hit->t);
+    hit->ng = sh_normalize(sh_v3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+    if (pr->shape->type == SH_SHAPE_SPHERE) {
+      /* Project the point back onto the exact sphere. */
+      const sh_shape *s = pr->shape;
+      sh_vec3 lp = sh_sub(sh_xform_point(&s->inv, hit->p), s->center);
+      lp = sh_scale(sh_normalize(lp), s->radius);
+      hit->p = sh_xform_point(&s->xform, sh_add(lp, s->center));
+    }
+  } else {
+    const unsigned *ix = pr->indices + 3 * rh.hit.primID;
+    const float *a = pr->verts + 3 * ix[0], *b = pr->verts + 3 * ix[1],
+                *c = pr->verts + 3 * ix[2];
+    sh_vec3 va = sh_v3(a[0], a[1], a[2]), vb = sh_v3(b[0], b[1], b[2]),
+            vc = sh_v3(c[0], c[1], c[2]);
+    double u = rh.hit.u, v = rh.hit.v;
+    hit->p = sh_add(sh_add(sh_scale(va, 1.0 - u - v), sh_scale(vb, u)),
+                    sh_scale(vc, v));
+    hit->ng = sh_normalize(sh_cross(sh_sub(vb, va), sh_sub(vc, va)));
+  }
+  return 1;
+}
+
+int sh_rt_intersect(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmin,
+                    double tmax, sh_hit *hit, sh_rt_counters *c) {
+  if (c) c->closest++;
+  return closest(rt->all, rt, o, d, tmin, tmax, hit);
+}
+
+sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                         sh_rt_counters *c) {
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  struct RTCRay r;
+  set_ray(&r, o, d, 0.0, tmax);
+  if (c) c->occlusion++;
+  rtcOccluded1(rt->opaque, &ctx, &r);
+  if (r.tfar < 0) return sh_v3s(0.0);
+  sh_vec3 vis = sh_v3s(1.0);
+  if (!rt->has_semi) return vis;
+  /* Walk the semitransparent crossings in order; coincident hits (shared
+   * edges, duplicate faces) fall within the step and count once. */
+  double t = 0.0;
+  sh_hit h;
+  for (int k = 0; k < 256; k++) {
+    if (c) c->closest++;
+    if (!closest(rt->semi, rt, o, d, t, tmax, &h)) break;
+    vis = sh_mul(vis, rt->scene->materials[rt->scene->shapes[h.shape].material]
+                          .transmit);
+    if (sh_max3(vis) <= 0) break;
+    t = h.t + fmax(1e-5 * h.t, 1e-6);
+  }
+  return vis;
+}
+
+static float offset_float(float p, float n) {
+  const float origin = 1.0f / 32.0f, float_scale = 1.0f / 65536.0f;
+  const float int_scale = 256.0f;
+  int32_t of = (int32_t)(int_scale * n);
+  int32_t bits;
+  memcpy(&bits, &p, sizeof bits);
+  bits += (p < 0) ? -of : of;
+  float pi;
+  memcpy(&pi, &bits, sizeof pi);
+  return fabsf(p) < origin ? p + float_scale * n : pi;
+}
+
+sh_vec3 sh_rt_offset(sh_vec3 p, sh_vec3 n) {
+  return sh_v3(offset_float((float)p.x, (float)n.x),
+               offset_float((float)p.y, (float)n.y),
+               offset_float((float)p.z, (float)n.z));
+}
