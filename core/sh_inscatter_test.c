@@ -128,7 +128,7 @@ int main(void) {
       double ss = sh_vget(s.medium.sigma_s, k), st = sh_vget(s.medium.sigma_t, k);
       double closed = ss * p * sh_vget(l.irradiance, k) * exp(-st * depth) *
                       (1 - exp(-st * D)) / st;
-      sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, D, 64, &rng,
+      sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, D, 1024, &rng,
                                        NULL, NULL);
       SH_CHECK_NEAR(sh_vget(est, k), closed, 1e-3, 0);
     }

@@ -209,7 +209,8 @@ static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
     return SH_OK;
   }
   sh_mesh m = {0};
-  sh_status st = sh_mesh_tessellate(s, 0.0, &m, err);
+  /* The error bound only matters for curved shapes, which stay exact here. */
+  sh_status st = sh_mesh_tessellate(s, 1.0, &m, err);
   if (st != SH_OK) return st;
   pr->nverts = m.nverts;
   pr->ntris = m.ntris;

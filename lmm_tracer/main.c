@@ -21,7 +21,8 @@ static void usage(FILE *f) {
 "\n"
 "options:\n"
 "  -o, --output FILE   output image: .exr (linear 32-bit float radiance) or\n"
-"                      .png (sRGB of radiance * 2^exposure, clamped)\n"
+"                      .png (sRGB of radiance * 2^exposure, clamped);\n"
+"                      repeat to write several formats from one render\n"
 "  --mode MODE         reference (default): the converged reference renderer\n"
 "  --spp N             in-scattering samples per ray segment and light\n"
 "                      (default: the scene's render.spp, else 16)\n"
@@ -36,8 +37,12 @@ static void usage(FILE *f) {
 "Exit status: 0 on success, 2 for bad input (arguments, scene), 1 otherwise.\n");
 }
 
+#define MAX_OUTPUTS 8
+
 typedef struct args {
-  const char *scene, *output, *stats, *mode;
+  const char *scene, *stats, *mode;
+  const char *outputs[MAX_OUTPUTS];
+  int noutputs;
   long spp, max_depth, seed, threads;
   double exposure;
   int has_exposure, quiet;
@@ -62,7 +67,11 @@ static int parse_args(int argc, char **argv, args *a) {
       fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
       return 2;
     } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
-      a->output = v;
+      if (a->noutputs == MAX_OUTPUTS) {
+        fprintf(stderr, "%s: at most %d outputs\n", TOOL, MAX_OUTPUTS);
+        return 2;
+      }
+      a->outputs[a->noutputs++] = v;
     } else if (!strcmp(o, "--stats")) {
       a->stats = v;
     } else if (!strcmp(o, "--mode")) {
@@ -91,16 +100,18 @@ static int parse_args(int argc, char **argv, args *a) {
     if (!ok) return 2;
     i++;
   }
-  if (!a->scene || !a->output) {
+  if (!a->scene || !a->noutputs) {
     fprintf(stderr, "%s: need a scene file and -o OUTPUT (see --help)\n", TOOL);
     return 2;
   }
-  char ext[16];
-  sh_file_extension(a->output, ext, sizeof ext);
-  if (strcmp(ext, "exr") && strcmp(ext, "png")) {
-    fprintf(stderr, "%s: output '%s' must end in .exr or .png\n", TOOL,
-            a->output);
-    return 2;
+  for (int k = 0; k < a->noutputs; k++) {
+    char ext[16];
+    sh_file_extension(a->outputs[k], ext, sizeof ext);
+    if (strcmp(ext, "exr") && strcmp(ext, "png")) {
+      fprintf(stderr, "%s: output '%s' must end in .exr or .png\n", TOOL,
+              a->outputs[k]);
+      return 2;
+    }
   }
   if (strcmp(a->mode, "reference")) {
     fprintf(stderr, "%s: unknown --mode '%s'; this version has: reference\n",
@@ -134,8 +145,10 @@ int main(int argc, char **argv) {
   sh_image img = {0};
   sh_reference_stats st;
   rc = 0;
-  if (sh_render_reference(scene, &opt, &img, &st, &err) != SH_OK ||
-      sh_image_write(a.output, &img, exposure, &err) != SH_OK) {
+  sh_status status = sh_render_reference(scene, &opt, &img, &st, &err);
+  for (int k = 0; status == SH_OK && k < a.noutputs; k++)
+    status = sh_image_write(a.outputs[k], &img, exposure, &err);
+  if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else if (a.stats) {
     sh_stats *s = sh_stats_new();
@@ -158,8 +171,9 @@ int main(int argc, char **argv) {
     sh_stats_free(s);
   }
   if (rc == 0 && !a.quiet)
-    fprintf(stderr, "%s: wrote %s (%dx%d) in %.2f s\n", TOOL, a.output,
-            img.width, img.height, st.seconds);
+    for (int k = 0; k < a.noutputs; k++)
+      fprintf(stderr, "%s: wrote %s (%dx%d, rendered in %.2f s)\n", TOOL,
+              a.outputs[k], img.width, img.height, st.seconds);
   sh_image_free(&img);
   sh_scene_free(scene);
   return rc;
