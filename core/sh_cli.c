@@ -58,7 +58,11 @@ sh_stats *sh_stats_new(void) {
 }
 
 void sh_stats_num(sh_stats *s, const char *key, double value) {
-  if (s) json_object_set_new(s->obj, key, json_real(value));
+  if (!s) return;
+  if (value == floor(value) && fabs(value) < 9007199254740992.0)
+    json_object_set_new(s->obj, key, json_integer((json_int_t)value));
+  else
+    json_object_set_new(s->obj, key, json_real(value));
 }
 
 void sh_stats_str(sh_stats *s, const char *key, const char *value) {

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Command-line behaviour of lmm_tracer: help, bad arguments and bad scenes
+# exit with status 2 and write nothing, a good render writes every output and
+# a statistics file, and the same command gives the same image.
+set -u
+tool=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+check() { # description, expected status, actual status
+  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
+}
+
+"$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
+grep -q "usage: lmm_tracer" "$dir/help" || { echo "FAIL: --help text"; fail=1; }
+
+cat >"$dir/good.json" <<'JSON'
+{"format": "shafts-scene", "version": 1,
+ "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
+            "width": 16, "height": 12},
+ "medium": {"sigma_s": [0.1, 0.1, 0.1],
+            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
+ "lights": [{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}],
+ "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
+             "u": [6, 0, 0], "v": [0, 0, -6]}]}
+JSON
+sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$dir/good.json" >"$dir/typo.json"
+printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
+
+"$tool" "$dir/good.json" >/dev/null 2>&1; check "missing -o" 2 $?
+"$tool" "$dir/good.json" -o "$dir/x.tga" >/dev/null 2>&1; check "bad extension" 2 $?
+"$tool" "$dir/good.json" -o "$dir/x.exr" --spp 0 >/dev/null 2>&1; check "--spp 0" 2 $?
+"$tool" "$dir/good.json" -o "$dir/x.exr" --bogus >/dev/null 2>&1; check "unknown option" 2 $?
+"$tool" "$dir/good.json" -o "$dir/x.exr" --mode nonsense >/dev/null 2>&1; check "bad mode" 2 $?
+"$tool" "$dir/typo.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "misspelled key" 2 $?
+grep -q "typo.json:6:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
+  || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
+"$tool" "$dir/truncated.json" -o "$dir/x.exr" -q 2>/dev/null; check "truncated" 2 $?
+"$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 1 $?
+[ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
+ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
+
+"$tool" "$dir/good.json" -o "$dir/a.exr" -o "$dir/a.png" --stats "$dir/a.json" \
+  --spp 4 -q; check "good render" 0 $?
+for f in a.exr a.png a.json; do
+  [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail=1; }
+done
+grep -q '"medium_samples"' "$dir/a.json" || { echo "FAIL: stats keys"; fail=1; }
+"$tool" "$dir/good.json" -o "$dir/b.exr" --spp 4 --threads 1 -q
+cmp -s "$dir/a.exr" "$dir/b.exr" || { echo "FAIL: same command, different image"; fail=1; }
+exit $fail
