@@ -1,0 +1,390 @@
+/* The scene parser: JSON text to a validated sh_scene. This file holds the
+ * entry points, JSON syntax errors, and the top-level sections; lights and
+ * shapes have files of their own (sh_parse_int.h). */
+#include "sh_parse.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sh_parse_int.h"
+
+static const char *const top_keys[] = {
+    "format", "version",   "camera", "background", "ambient", "medium",
+    "lights", "materials", "shapes", "render",     NULL};
+static const char *const camera_keys[] = {
+    "position", "look_at", "up", "fov_y_deg", "width", "height", NULL};
+static const char *const medium_keys[] = {"sigma_s", "sigma_a", "phase",
+                                          "bounds", NULL};
+static const char *const bounds_keys[] = {"min", "max", NULL};
+static const char *const phase_keys[] = {"type", NULL};
+static const char *const phase_hg_keys[] = {"g", NULL};
+static const char *const material_keys[] = {"diffuse",  "specular", "shininess",
+                                            "reflect",  "transmit", "ior",
+                                            "emission", NULL};
+/* The project's own keys (docs/scene-format.md, "render"). */
+static const char *const render_keys[] = {"spp", "max_depth", "seed",
+                                          "exposure", NULL};
+/* In the order of sh_phase_type. */
+static const char *const phase_names[] = {"isotropic",    "henyey_greenstein",
+                                          "nishita_hazy", "nishita_murky",
+                                          "rayleigh",     NULL};
+
+#define MAX_IMAGE_SIZE 65536
+
+static sh_status parse_camera(sh__parser *p, json_t *root) {
+  sh__pctx *c = &p->c;
+  sh_camera *cam = &p->scene->camera;
+  json_t *o;
+  long long w, h;
+  sh_status st;
+  if ((st = sh__object(c, root, "camera", 1, &o))) return st;
+  sh__push_key(c, "camera");
+  if ((st = sh__check_keys(c, o, SH__KEYS(camera_keys), "the camera")) ||
+      (st =
+           sh__vec3(c, o, "position", 1, sh_v3s(0), sh__any, &cam->position)) ||
+      (st = sh__vec3(c, o, "look_at", 1, sh_v3s(0), sh__any, &cam->look_at)) ||
+      (st = sh__direction(c, o, "up", 0, &cam->up, NULL)) ||
+      (st = sh__number(c, o, "fov_y_deg", 1, 0, (sh__range){0, 180, 1, 1},
+                       &cam->fov_y_deg)) ||
+      (st = sh__integer(c, o, "width", 1, 0, 1, MAX_IMAGE_SIZE, &w)) ||
+      (st = sh__integer(c, o, "height", 1, 0, 1, MAX_IMAGE_SIZE, &h)))
+    return st;
+  cam->width = (int)w;
+  cam->height = (int)h;
+  sh_vec3 d = sh_sub(cam->look_at, cam->position);
+  if (sh_is_black(d))
+    return sh__fail_at(c, "look_at", SH_ERR_SCENE,
+                       "look_at equals position: the camera has no viewing "
+                       "direction");
+  if (sh__parallel(cam->up, d)) {
+    if (json_object_get(o, "up"))
+      return sh__fail_at(c, "up", SH_ERR_SCENE,
+                         "up is parallel to the viewing direction (look_at - "
+                         "position); give an up vector across it");
+    return sh__fail(c, SH_ERR_SCENE,
+                    "the viewing direction (look_at - position) is parallel "
+                    "to the default up [0, 1, 0]; give an \"up\" across it");
+  }
+  sh__pop(c);
+  return SH_OK;
+}
+
+static sh_status parse_phase(sh__parser *p, json_t *medium) {
+  sh__pctx *c = &p->c;
+  sh_phase *ph = &p->scene->medium.phase;
+  json_t *o;
+  int type;
+  sh_status st;
+  char what[80];
+  ph->type = SH_PHASE_ISOTROPIC;
+  ph->g = 0;
+  if ((st = sh__object(c, medium, "phase", 0, &o)) || !o) return st;
+  sh__push_key(c, "phase");
+  if ((st = sh__choice(c, o, "type", 1, phase_names, 0, "phase function",
+                       &type)))
+    return st;
+  ph->type = (sh_phase_type)type;
+  snprintf(what, sizeof what, "a phase function of type '%s'",
+           phase_names[type]);
+  if (ph->type == SH_PHASE_HENYEY_GREENSTEIN) {
+    if ((st =
+             sh__check_keys(c, o, SH__KEYS(phase_keys, phase_hg_keys), what)) ||
+        (st = sh__number(c, o, "g", 1, 0, (sh__range){-1, 1, 1, 1}, &ph->g)))
+      return st;
+  } else if ((st = sh__check_keys(c, o, SH__KEYS(phase_keys), what))) {
+    return st;
+  }
+  sh__pop(c);
+  return SH_OK;
+}
+
+static sh_status parse_medium(sh__parser *p, json_t *root) {
+  sh__pctx *c = &p->c;
+  sh_medium *m = &p->scene->medium;
+  json_t *o, *b;
+  sh_status st;
+  if ((st = sh__object(c, root, "medium", 0, &o)) || !o) return st;
+  sh__push_key(c, "medium");
+  if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys), "the medium")) ||
+      (st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__ge0, &m->sigma_s)) ||
+      (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__ge0, &m->sigma_a)) ||
+      (st = parse_phase(p, o)) || (st = sh__object(c, o, "bounds", 1, &b)))
+    return st;
+  sh__push_key(c, "bounds");
+  if ((st = sh__check_keys(c, b, SH__KEYS(bounds_keys),
+                           "the medium's bounds")) ||
+      (st = sh__min_max(c, b, &m->bmin, &m->bmax)))
+    return st;
+  sh__pop(c);
+  m->sigma_t = sh_add(m->sigma_s, m->sigma_a);
+  m->present = 1;
+  sh__pop(c);
+  return SH_OK;
+}
+
+static sh_status parse_materials(sh__parser *p, json_t *root) {
+  sh__pctx *c = &p->c;
+  sh_scene *s = p->scene;
+  json_t *o, *mo;
+  const char *name;
+  sh_status st;
+  if ((st = sh__object(c, root, "materials", 0, &o)) || !o) return st;
+  size_t n = json_object_size(o);
+  if (n == 0) return SH_OK;
+  s->materials = calloc(n, sizeof *s->materials);
+  if (!s->materials)
+    return sh__fail_at(c, "materials", SH_ERR_NOMEM, "out of memory");
+  s->nmaterials = (int)n;
+  sh__push_key(c, "materials");
+  int i = 0;
+  json_object_foreach(o, name, mo) {
+    sh_material *m = &s->materials[i++];
+    if ((st = sh__object(c, o, name, 1, &mo))) return st;
+    sh__push_key(c, name);
+    if (!(m->name = strdup(name)))
+      return sh__fail(c, SH_ERR_NOMEM, "out of memory");
+    if ((st = sh__check_keys(c, mo, SH__KEYS(material_keys), "a material")) ||
+        (st = sh__vec3(c, mo, "diffuse", 0, sh_v3s(0), sh__ge0, &m->diffuse)) ||
+        (st = sh__vec3(c, mo, "specular", 0, sh_v3s(0), sh__ge0,
+                       &m->specular)) ||
+        (st = sh__number(c, mo, "shininess", 0, 32, sh__ge0, &m->shininess)) ||
+        (st = sh__vec3(c, mo, "reflect", 0, sh_v3s(0), sh__ge0, &m->reflect)) ||
+        (st = sh__vec3(c, mo, "transmit", 0, sh_v3s(0), sh__ge0,
+                       &m->transmit)) ||
+        (st = sh__number(c, mo, "ior", 0, 1, sh__gt0, &m->ior)) ||
+        (st = sh__vec3(c, mo, "emission", 0, sh_v3s(0), sh__ge0, &m->emission)))
+      return st;
+    sh__pop(c);
+  }
+  sh__pop(c);
+  return SH_OK;
+}
+
+/* ---- Render settings (the project's own keys) ---- */
+
+static sh_status parse_render(sh__parser *p, json_t *root) {
+  sh__pctx *c = &p->c;
+  sh_render_settings *r = &p->scene->render;
+  json_t *o;
+  long long spp = 16, depth = 5, seed = 0;
+  sh_status st;
+  r->spp = 16;
+  r->max_depth = 5;
+  r->seed = 0;
+  r->exposure = 0;
+  if ((st = sh__object(c, root, "render", 0, &o)) || !o) return st;
+  sh__push_key(c, "render");
+  if ((st = sh__check_keys(c, o, SH__KEYS(render_keys),
+                           "the render settings")) ||
+      (st = sh__integer(c, o, "spp", 0, 16, 1, INT_MAX, &spp)) ||
+      (st = sh__integer(c, o, "max_depth", 0, 5, 0, 100, &depth)) ||
+      (st = sh__integer(c, o, "seed", 0, 0, 0, 4294967295LL, &seed)) ||
+      (st = sh__number(c, o, "exposure", 0, 0, sh__any, &r->exposure)))
+    return st;
+  r->spp = (int)spp;
+  r->max_depth = (int)depth;
+  r->seed = (unsigned)seed;
+  sh__pop(c);
+  return SH_OK;
+}
+
+/* ---- The whole scene ---- */
+
+static sh_status parse_root(sh__parser *p, json_t *root) {
+  sh__pctx *c = &p->c;
+  sh_scene *s = p->scene;
+  json_t *v;
+  const char *fmt;
+  sh_status st;
+  if (!json_is_object(root))
+    return sh__wrong(c, root, "an object (a shafts scene) at the top level");
+  /* The format and version come first, so that another kind of JSON file
+   * is named as such rather than by its first unknown key. */
+  if ((v = json_object_get(root, "format"))) {
+    if ((st = sh__string(c, root, "format", 1, &fmt))) return st;
+    if (strcmp(fmt, "shafts-scene") != 0)
+      return sh__fail_at(c, "format", SH_ERR_SCENE,
+                         "expected \"shafts-scene\", found \"%s\": this is "
+                         "not a shafts scene file",
+                         fmt);
+  }
+  if ((v = json_object_get(root, "version"))) {
+    char num[40];
+    if (!json_is_number(v)) {
+      sh__push_key(c, "version");
+      return sh__wrong(c, v, "the number 1");
+    }
+    if (json_number_value(v) != 1) {
+      sh__fmt_num(json_number_value(v), num, sizeof num);
+      return sh__fail_at(c, "version", SH_ERR_SCENE,
+                         "unsupported scene format version %s; this program "
+                         "reads version 1",
+                         num);
+    }
+  }
+  if ((st = sh__check_keys(c, root, SH__KEYS(top_keys), "the top level")))
+    return st;
+  if (!json_object_get(root, "format"))
+    return sh__missing(c, "format", "\"shafts-scene\"");
+  if (!json_object_get(root, "version"))
+    return sh__missing(c, "version", "the number 1");
+  if ((st = parse_camera(p, root)) ||
+      (st = sh__vec3(c, root, "background", 0, sh_v3s(0), sh__ge0,
+                     &s->background)) ||
+      (st = sh__vec3(c, root, "ambient", 0, sh_v3s(0), sh__ge0, &s->ambient)) ||
+      (st = parse_medium(p, root)) || (st = parse_materials(p, root)) ||
+      (st = sh__parse_lights(p, root)) || (st = sh__parse_shapes(p, root)) ||
+      (st = parse_render(p, root)))
+    return st;
+  return SH_OK;
+}
+
+/* Turns jansson's report of text it could not read into an sh_error. A
+ * number too large for a double (1e999) is valid JSON that breaks the
+ * format's "every number is finite": an SH_ERR_SCENE at the number. */
+static sh_status syntax_error(const char *text, size_t len, const char *name,
+                              const json_error_t *je, sh_error *err) {
+  enum json_error_code code = json_error_code(je);
+  size_t pos = je->position > 0 ? (size_t)je->position : 0;
+  if (code == json_error_out_of_memory)
+    return sh_error_set(err, SH_ERR_NOMEM,
+                        "out of memory while reading the scene");
+  if (pos > len) pos = len;
+  if (code == json_error_numeric_overflow) {
+    size_t start = pos;
+    while (start > 0 && strchr("0123456789+-.eE", text[start - 1]) &&
+           text[start - 1])
+      start--;
+    int is_real = 0;
+    for (size_t i = start; i < pos; i++)
+      is_real |= text[i] == '.' || text[i] == 'e' || text[i] == 'E';
+    if (is_real)
+      sh_error_set(err, SH_ERR_SCENE,
+                   "expected a finite number, found %.*s, which is too large "
+                   "for a double",
+                   (int)(pos - start), text + start);
+    else
+      sh_error_set(err, SH_ERR_SCENE,
+                   "the integer %.*s is too large; write large numbers with "
+                   "an exponent (such as 1e20)",
+                   (int)(pos - start), text + start);
+    sh__json_linecol(text, start, &err->line, &err->column);
+  } else {
+    sh_error_set(err, SH_ERR_SYNTAX, "invalid JSON: %s", je->text);
+    err->line = je->line > 0 ? je->line : 1;
+    err->column = je->column > 0 ? je->column : 1;
+  }
+  snprintf(err->file, sizeof err->file, "%s", name);
+  /* When the offending token is a closing bracket, the path is the one
+   * inside the container it fails to close. */
+  if (pos > 0 && (strstr(je->text, "near '}'") || strstr(je->text, "near ']'")))
+    pos--;
+  sh__json_path_at(text, len, pos, err->path, sizeof err->path);
+  return err->status;
+}
+
+static sh_status parse_buffer(const char *text, size_t len, const char *name,
+                              const char *base_dir, sh_scene **out,
+                              sh_error *err) {
+  sh_error local;
+  json_error_t je;
+  if (!err) err = &local;
+  if (out) *out = NULL;
+  if (!text || !out)
+    return sh_error_set(err, SH_ERR_ARG, "sh_scene_parse: no text or output");
+  if (!name) name = "<scene>";
+  json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &je);
+  if (!root) return syntax_error(text, len, name, &je, err);
+  sh__parser p;
+  memset(&p, 0, sizeof p);
+  p.c.text = text;
+  p.c.len = len;
+  p.c.name = name;
+  p.c.err = err;
+  p.base_dir = base_dir;
+  sh_scene *s = p.scene = calloc(1, sizeof *s);
+  if (!s || !(s->file = strdup(name))) {
+    free(s);
+    json_decref(root);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  s->camera.up = sh_v3(0, 1, 0);
+  sh_status st = parse_root(&p, root);
+  json_decref(root);
+  if (st != SH_OK) {
+    sh_scene_free(s);
+    return st;
+  }
+  memset(err, 0, sizeof *err);
+  *out = s;
+  return SH_OK;
+}
+
+sh_status sh_scene_parse(const char *text, const char *name,
+                         const char *base_dir, sh_scene **out, sh_error *err) {
+  return parse_buffer(text, text ? strlen(text) : 0, name, base_dir, out, err);
+}
+
+sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
+  if (out) *out = NULL;
+  if (!path || !out)
+    return sh_error_set(err, SH_ERR_ARG, "sh_scene_load: no path or output");
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    int e = errno;
+    sh_error_set(err, SH_ERR_IO, "cannot open the scene file: %s", strerror(e));
+    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    return SH_ERR_IO;
+  }
+  size_t cap = 1 << 16, len = 0;
+  char *buf = malloc(cap + 1);
+  sh_status st = SH_OK;
+  while (buf) {
+    size_t got = fread(buf + len, 1, cap - len, f);
+    len += got;
+    if (len < cap) break;
+    char *bigger = cap < SIZE_MAX / 4 ? realloc(buf, 2 * cap + 1) : NULL;
+    if (!bigger) {
+      free(buf);
+      buf = NULL;
+      break;
+    }
+    buf = bigger;
+    cap *= 2;
+  }
+  if (!buf) {
+    st = sh_error_set(err, SH_ERR_NOMEM, "out of memory reading the scene");
+  } else if (ferror(f)) {
+    int e = errno;
+    st = sh_error_set(err, SH_ERR_IO, "cannot read the scene file: %s",
+                      strerror(e));
+  }
+  fclose(f);
+  if (st != SH_OK) {
+    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    free(buf);
+    return st;
+  }
+  buf[len] = '\0';
+  /* The scene's directory: everything before the last slash. */
+  char *dir = strdup(path);
+  if (!dir) {
+    free(buf);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  char *slash = strrchr(dir, '/');
+  if (!slash)
+    strcpy(dir, ".");
+  else if (slash == dir)
+    dir[1] = '\0';
+  else
+    *slash = '\0';
+  st = parse_buffer(buf, len, path, dir, out, err);
+  free(dir);
+  free(buf);
+  return st;
+}

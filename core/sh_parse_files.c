@@ -1,0 +1,76 @@
+/* The scene parser's external files: names resolved against the scene's
+ * directory, checked, and images read. */
+#include "sh_parse_int.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
+                           char **out) {
+  const char *base = p->base_dir;
+  size_t bl = base ? strlen(base) : 0;
+  if (!name[0])
+    return sh__fail_at(&p->c, key, SH_ERR_SCENE,
+                       "expected a file name, found an empty string");
+  if (name[0] == '/' || bl == 0) bl = 0;
+  char *path = malloc(bl + strlen(name) + 2);
+  if (!path) return sh__fail_at(&p->c, key, SH_ERR_NOMEM, "out of memory");
+  if (bl == 0)
+    strcpy(path, name);
+  else
+    sprintf(path, "%s%s%s", base, base[bl - 1] == '/' ? "" : "/", name);
+  *out = path;
+  return SH_OK;
+}
+
+sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
+                         const char *path, const char *kind,
+                         sh_status empty_status) {
+  struct stat sb;
+  if (stat(path, &sb) != 0)
+    return sh__fail_at(&p->c, key, SH_ERR_IO,
+                       "cannot open the %s '%s' (resolved to '%s'): %s", kind,
+                       name, path, strerror(errno));
+  if (S_ISDIR(sb.st_mode))
+    return sh__fail_at(&p->c, key, SH_ERR_IO,
+                       "the %s '%s' (resolved to '%s') is a directory", kind,
+                       name, path);
+  if (sb.st_size == 0)
+    return sh__fail_at(&p->c, key, empty_status,
+                       "the %s '%s' (resolved to '%s') is an empty file", kind,
+                       name, path);
+  return SH_OK;
+}
+
+sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
+                         sh_image *img, char **path_out) {
+  const char *name;
+  char *path = NULL;
+  sh_status st;
+  sh_error e;
+  if ((st = sh__string(&p->c, obj, key, 1, &name))) return st;
+  if ((st = sh__resolve_file(p, key, name, &path))) return st;
+  if ((st = sh__check_file(p, key, name, path, "image", SH_ERR_IMAGE)))
+    goto out;
+  memset(&e, 0, sizeof e);
+  if ((st = sh_image_read(path, img, &e))) {
+    char prefix[700];
+    snprintf(prefix, sizeof prefix, "cannot read the image '%s': ", path);
+    sh__fail_from(&p->c, key, &e, prefix);
+    goto out;
+  }
+  if (img->width < 1 || img->height < 1 || !img->rgb) {
+    st = sh__fail_at(&p->c, key, SH_ERR_IMAGE, "the image '%s' has no pixels",
+                     path);
+    goto out;
+  }
+out:
+  if (st == SH_OK && path_out)
+    *path_out = path;
+  else
+    free(path);
+  return st;
+}

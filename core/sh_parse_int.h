@@ -1,0 +1,57 @@
+/* Internal to the scene parser (sh_parse.c, sh_parse_lights.c,
+ * sh_parse_shapes.c, sh_parse_files.c): the parser's state and the parts
+ * its files share.
+ *
+ * Every kind of JSON object in a scene is read the same way: check its keys
+ * against the table of keys allowed for that kind (a NULL-terminated list
+ * beside the kind's reader), read each member with a typed reader of
+ * sh_parse_ctx.h, then check the relations between members. To add a key,
+ * add it to its kind's table and read it in that kind's function. */
+#ifndef SH_PARSE_INT_H
+#define SH_PARSE_INT_H
+
+#include <jansson.h>
+
+#include "sh_parse_ctx.h"
+#include "sh_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* A list of key tables, for sh__check_keys: SH__KEYS(common, specific). */
+#define SH__KEYS(...) ((const char *const *const[]){__VA_ARGS__, NULL})
+
+typedef struct sh__parser {
+  sh__pctx c;
+  const char *base_dir; /* NULL or "": file names are used as they are */
+  sh_scene *scene;      /* being filled; freed by the caller on error */
+} sh__parser;
+
+/* Joins a file name of the scene (member `key`) to the scene's directory,
+ * unless it is absolute, into a new string (*out, caller frees). */
+sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
+                           char **out);
+
+/* Checks that the resolved file `path` exists, is not a directory and is
+ * not empty, so that a missing file is reported at its key with both the
+ * name as written and the resolved path. An empty file is `empty_status`. */
+sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
+                         const char *path, const char *kind,
+                         sh_status empty_status);
+
+/* Reads the image named by the string member `key` of obj into img (caller
+ * frees with sh_image_free); *path_out, if path_out is not NULL, gets the
+ * resolved path (caller frees). */
+sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
+                         sh_image *img, char **path_out);
+
+/* Read the "lights" and "shapes" arrays of the root object. Materials and
+ * the camera must have been read already. */
+sh_status sh__parse_lights(sh__parser *p, json_t *root);
+sh_status sh__parse_shapes(sh__parser *p, json_t *root);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
