@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,12 +23,19 @@ static const char *const medium_keys[] = {"sigma_s", "sigma_a", "phase",
 static const char *const bounds_keys[] = {"min", "max", NULL};
 static const char *const phase_keys[] = {"type", NULL};
 static const char *const phase_hg_keys[] = {"g", NULL};
-static const char *const material_keys[] = {"diffuse",  "specular", "shininess",
-                                            "reflect",  "transmit", "ior",
-                                            "emission", NULL};
+static const char *const material_keys[] = {
+    "diffuse",  "specular", "shininess",          "reflect",
+    "transmit", "ior",      "emission",           "casts_soft_shadows",
+    "receives_soft_shadows", NULL};
 /* The project's own keys (docs/scene-format.md, "render"). */
-static const char *const render_keys[] = {"spp", "max_depth", "seed",
-                                          "exposure", NULL};
+static const char *const render_keys[] = {
+    "spp",    "max_depth",      "seed", "exposure",  "planes", "lattice",
+    "light_map_res", "shadow_map_res", "xi", "jitter", "mesh_step", "kl",
+    "scheme", NULL};
+/* In the order of sh_xi_mode and sh_lmm_scheme, after DEFAULT. */
+static const char *const xi_names[] = {"lattice", "exact", NULL};
+static const char *const scheme_names[] = {"straight", "refract-trace",
+                                           "refract-both", NULL};
 /* In the order of sh_phase_type. */
 static const char *const phase_names[] = {"isotropic",    "henyey_greenstein",
                                           "nishita_hazy", "nishita_murky",
@@ -156,7 +164,12 @@ static sh_status parse_materials(sh__parser *p, json_t *root) {
         (st = sh__vec3(c, mo, "transmit", 0, sh_v3s(0), sh__ge0,
                        &m->transmit)) ||
         (st = sh__number(c, mo, "ior", 0, 1, sh__gt0, &m->ior)) ||
-        (st = sh__vec3(c, mo, "emission", 0, sh_v3s(0), sh__ge0, &m->emission)))
+        (st = sh__vec3(c, mo, "emission", 0, sh_v3s(0), sh__ge0,
+                       &m->emission)) ||
+        (st = sh__boolean(c, mo, "casts_soft_shadows", 0, 1,
+                          &m->casts_soft_shadows)) ||
+        (st = sh__boolean(c, mo, "receives_soft_shadows", 0, 1,
+                          &m->receives_soft_shadows)))
       return st;
     sh__pop(c);
   }
@@ -165,6 +178,53 @@ static sh_status parse_materials(sh__parser *p, json_t *root) {
 }
 
 /* ---- Render settings (the project's own keys) ---- */
+
+/* The keys of gl_shafts and of the light meshes method. */
+static sh_status parse_render_tools(sh__pctx *c, json_t *o,
+                                    sh_render_settings *r) {
+  long long planes, lmres, smres, lat[2] = {0, 0};
+  int xi, scheme, jitter;
+  json_t *a;
+  sh_status st;
+  if ((st = sh__integer(c, o, "planes", 0, 0, 1, 100000, &planes)) ||
+      (st = sh__integer(c, o, "light_map_res", 0, 0, 1, 16384, &lmres)) ||
+      (st = sh__integer(c, o, "shadow_map_res", 0, 0, 1, 16384, &smres)) ||
+      (st = sh__choice(c, o, "xi", 0, xi_names, -1, "xi mode", &xi)) ||
+      (st = sh__choice(c, o, "scheme", 0, scheme_names, -1,
+                       "light meshes scheme", &scheme)) ||
+      (st = sh__number(c, o, "mesh_step", 0, 0, sh__gt0, &r->mesh_step)) ||
+      (st = sh__number(c, o, "kl", 0, 0, sh__gt0, &r->kl)) ||
+      (st = sh__array(c, o, "lattice", 0, &a)))
+    return st;
+  jitter = -1;
+  if (json_object_get(o, "jitter") &&
+      (st = sh__boolean(c, o, "jitter", 1, 0, &jitter)))
+    return st;
+  if (a) {
+    sh__push_key(c, "lattice");
+    if (json_array_size(a) != 2)
+      return sh__wrong(c, a, "an array of 2 integers [nu, nv], each >= 2");
+    for (int i = 0; i < 2; i++) {
+      json_t *v = json_array_get(a, (size_t)i);
+      double x = json_is_number(v) ? json_number_value(v) : 0;
+      if (!json_is_number(v) || x != floor(x) || x < 2 || x > 65536) {
+        sh__push_index(c, i);
+        return sh__wrong(c, v, "an integer in [2, 65536]");
+      }
+      lat[i] = (long long)x;
+    }
+    sh__pop(c);
+  }
+  r->planes = (int)planes;
+  r->light_map_res = (int)lmres;
+  r->shadow_map_res = (int)smres;
+  r->lattice_u = (int)lat[0];
+  r->lattice_v = (int)lat[1];
+  r->xi = (sh_xi_mode)(xi + 1);
+  r->scheme = (sh_lmm_scheme)(scheme + 1);
+  r->jitter = jitter;
+  return SH_OK;
+}
 
 static sh_status parse_render(sh__parser *p, json_t *root) {
   sh__pctx *c = &p->c;
@@ -176,6 +236,7 @@ static sh_status parse_render(sh__parser *p, json_t *root) {
   r->max_depth = 5;
   r->seed = 0;
   r->exposure = 0;
+  r->jitter = -1;
   if ((st = sh__object(c, root, "render", 0, &o)) || !o) return st;
   sh__push_key(c, "render");
   if ((st = sh__check_keys(c, o, SH__KEYS(render_keys),
@@ -188,6 +249,7 @@ static sh_status parse_render(sh__parser *p, json_t *root) {
   r->spp = (int)spp;
   r->max_depth = (int)depth;
   r->seed = (unsigned)seed;
+  if ((st = parse_render_tools(c, o, r))) return st;
   sh__pop(c);
   return SH_OK;
 }

@@ -8,7 +8,7 @@
 
 #include "sh_light.h"
 
-static const char *const light_keys[] = {"type", NULL};
+static const char *const light_keys[] = {"type", "soft_shadows", NULL};
 static const char *const point_keys[] = {"position", "intensity", NULL};
 static const char *const spot_keys[] = {
     "position",        "direction", "look_at",   "intensity", "outer_angle_deg",
@@ -124,7 +124,8 @@ static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
     return st;
   l->type = (sh_light_type)type;
   if ((st = sh__check_keys(c, o, SH__KEYS(light_keys, type_keys[type]),
-                           what[type])))
+                           what[type])) ||
+      (st = sh__boolean(c, o, "soft_shadows", 0, 1, &l->soft_shadows)))
     return st;
   switch (l->type) {
   case SH_LIGHT_POINT:

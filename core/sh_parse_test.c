@@ -294,6 +294,8 @@ static void test_defaults(void) {
   SH_CHECK(s != NULL);
   if (!s) return;
   SH_CHECK(strcmp(s->file, "mem.json") == 0);
+  SH_CHECK(s->render.planes == 0 && s->render.xi == SH_XI_DEFAULT);
+  SH_CHECK(s->render.jitter == -1 && s->render.scheme == SH_SCHEME_DEFAULT);
   check_vec(s->camera.up, 0, 1, 0);
   check_vec(s->background, 0, 0, 0);
   check_vec(s->ambient, 0, 0, 0);
@@ -662,6 +664,22 @@ static const bad_case bad_cases[] = {
      "expected an integer from 1 to 2147483647, found the number 0"},
     {HEAD "\"render\": {\"exposure\": \"high\"}}", SH_ERR_SCENE, 3, 24,
      "render.exposure", "expected a finite number, found the string"},
+    {HEAD "\"render\": {\"lattice\": [20]}}", SH_ERR_SCENE, 3, 23,
+     "render.lattice", "an array of 2 integers"},
+    {HEAD "\"render\": {\"lattice\": [20, 1]}}", SH_ERR_SCENE, 3, 28,
+     "render.lattice[1]", "an integer in [2, 65536]"},
+    {HEAD "\"render\": {\"xi\": \"exakt\"}}", SH_ERR_SCENE, 3, 18,
+     "render.xi", "did you mean 'exact'"},
+    {HEAD "\"render\": {\"scheme\": \"both\"}}", SH_ERR_SCENE, 3, 22,
+     "render.scheme", "refract-both"},
+    {HEAD "\"render\": {\"kl\": 0}}", SH_ERR_SCENE, 3, 18, "render.kl",
+     "expected a number > 0"},
+    {HEAD "\"render\": {\"jitter\": 1}}", SH_ERR_SCENE, 3, 22,
+     "render.jitter", "expected true or false"},
+    {HEAD "\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
+          "\"intensity\": [1, 1, 1], \"soft_shadow\": false}]}",
+     SH_ERR_SCENE, 3, 77, "lights[0].soft_shadow",
+     "did you mean 'soft_shadows'"},
 };
 
 /* Prints the line of `text` that an error points at, with a caret. */

@@ -54,6 +54,7 @@ typedef struct sh_light {
   sh_vec3 position;   /* point, spot */
   sh_vec3 direction;  /* unit; spot: the axis; directional: travel direction */
   sh_vec3 intensity;  /* point, spot: W/sr (on the axis for spots) */
+  int soft_shadows;   /* light meshes: 1 (default) soft, 0 hard shadows */
   sh_vec3 irradiance; /* directional: W/m^2 normal to the direction */
   double outer_deg, inner_deg, exponent; /* spot */
 
@@ -78,6 +79,8 @@ typedef struct sh_material {
   sh_vec3 reflect, transmit;
   double ior; /* default 1 */
   sh_vec3 emission;
+  /* Light meshes controls (the project's keys), both default 1. */
+  int casts_soft_shadows, receives_soft_shadows;
 } sh_material;
 
 typedef enum sh_shape_type {
@@ -103,13 +106,40 @@ typedef struct sh_shape {
   sh_mesh mesh;        /* mesh, heightfield: object-space triangles; owned */
 } sh_shape;
 
+/* How gl_shafts evaluates the scattering term xi. */
+typedef enum sh_xi_mode {
+  SH_XI_DEFAULT, /* the renderer's default */
+  SH_XI_LATTICE, /* on the plane lattice, interpolated (the seed's method) */
+  SH_XI_EXACT    /* per fragment */
+} sh_xi_mode;
+
+/* Which paths the light meshes method refracts (Debelov et al., fig. 4). */
+typedef enum sh_lmm_scheme {
+  SH_SCHEME_DEFAULT,
+  SH_SCHEME_STRAIGHT,      /* refraction ignored everywhere */
+  SH_SCHEME_REFRACT_TRACE, /* refraction in traced rays only */
+  SH_SCHEME_REFRACT_BOTH   /* refraction in traced rays and visibility */
+} sh_lmm_scheme;
+
 /* Per-renderer defaults from the scene's `render` object; command-line
- * options override them. */
+ * options override them. A value of 0 (or the DEFAULT enumerator, or -1
+ * for jitter) means "not given: the renderer chooses". */
 typedef struct sh_render_settings {
   int spp;          /* reference: in-scattering samples per pixel, default 16 */
   int max_depth;    /* Whitted recursion limit, default 5 */
   unsigned seed;    /* default 0 */
   double exposure;  /* PNG exposure in stops, default 0 */
+  /* gl_shafts */
+  int planes;                 /* virtual planes */
+  int lattice_u, lattice_v;   /* lattice points per plane */
+  int light_map_res;          /* light-map texture size */
+  int shadow_map_res;         /* shadow-map size */
+  sh_xi_mode xi;
+  int jitter;                 /* -1 unset, 0 off, 1 on */
+  /* lmm_tracer, light meshes */
+  double mesh_step;           /* h, scene units */
+  double kl;                  /* interpolation radius r = h * kl */
+  sh_lmm_scheme scheme;
 } sh_render_settings;
 
 typedef struct sh_scene {
