@@ -2,18 +2,19 @@
 # Installs the Debian packages the project builds, tests and validates with.
 # Idempotent: packages already present are not touched, and nothing is
 # downloaded from outside Debian's archive.
-#   tools/bootstrap.sh          build and test dependencies
-#   tools/bootstrap.sh --peers  also POV-Ray and Blender (validation peers)
+#   tools/bootstrap.sh          everything: build, test and validation (the
+#                               tests render with POV-Ray and Blender too)
+#   tools/bootstrap.sh --build  only what the build needs
 set -eu
 
 build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
   libosmesa6-dev libopenimageio-dev openimageio-tools libassimp-dev python3"
 peer_pkgs="povray blender xvfb xauth"
 
-want="$build_pkgs"
+want="$build_pkgs $peer_pkgs"
 for arg in "$@"; do
   case "$arg" in
-    --peers) want="$want $peer_pkgs" ;;
+    --build) want="$build_pkgs" ;;
     -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bootstrap: unknown option '$arg'" >&2; exit 2 ;;
   esac
