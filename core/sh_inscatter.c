@@ -64,7 +64,13 @@ int sh_light_clip(const sh_light *l, sh_vec3 o, sh_vec3 d, double t0,
 /* Radiance scattered towards -d at x by one light, per unit length, with
  * visibility and the light's transmittance; before the camera-side
  * transmittance. Also returns the 1/r^2-free part via *r2 for point lights. */
-static sh_vec3 scatter_at(const sh_scene *scene, const sh_rt *rt,
+typedef struct vis_source {
+  const sh_rt *rt;
+  const sh_shadow_hook *hook;
+  int thread, light;
+} vis_source;
+
+static sh_vec3 scatter_at(const sh_scene *scene, const vis_source *vs,
                           const sh_light *l, sh_vec3 x, sh_vec3 d,
                           sh_rt_counters *c, double *r2) {
   sh_vec3 wi;
@@ -77,9 +83,13 @@ static sh_vec3 scatter_at(const sh_scene *scene, const sh_rt *rt,
                    ? sh_medium_length_ray(m, x, wi)
                    : sh_medium_length(m, x, l->position);
   e = sh_mul(e, sh_medium_tr(m, len));
-  if (rt) {
+  sh_vec3 vis;
+  if (vs->hook && vs->hook->volume &&
+      vs->hook->volume(vs->hook->user, vs->thread, x, vs->light, &vis, c)) {
+    e = sh_mul(e, vis);
+  } else if (vs->rt) {
     double tmax = l->type == SH_LIGHT_DIRECTIONAL ? INFINITY : dist * (1.0 - 1e-7);
-    sh_vec3 vis = sh_rt_visibility(rt, x, wi, tmax, c);
+    vis = sh_rt_visibility(vs->rt, x, wi, tmax, c);
     if (sh_is_black(vis)) return vis;
     e = sh_mul(e, vis);
   }
@@ -88,10 +98,12 @@ static sh_vec3 scatter_at(const sh_scene *scene, const sh_rt *rt,
 }
 
 sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
+                           const sh_shadow_hook *hook, int thread,
                            const sh_light *l, sh_vec3 o, sh_vec3 d,
                            double t0, double t1, int n, sh_rng *rng,
                            sh_rt_counters *c, uint64_t *samples) {
   sh_vec3 sum = sh_v3s(0.0);
+  vis_source vs = {rt, hook, thread, hook ? (int)(l - scene->lights) : -1};
   double a, b;
   if (n < 1 || !sh_light_clip(l, o, d, t0, t1, &a, &b)) return sum;
   const sh_medium *m = &scene->medium;
@@ -113,7 +125,7 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
       }
       double r2;
       sh_vec3 x = sh_madd(o, d, t);
-      sh_vec3 s = scatter_at(scene, rt, l, x, d, c, &r2);
+      sh_vec3 s = scatter_at(scene, &vs, l, x, d, c, &r2);
       sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), inv_pdf));
     }
   } else {
@@ -129,7 +141,7 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
       t = sh_clamp(t, a, b);
       double r2;
       sh_vec3 x = sh_madd(o, d, t);
-      sh_vec3 s = scatter_at(scene, rt, l, x, d, c, &r2);
+      sh_vec3 s = scatter_at(scene, &vs, l, x, d, c, &r2);
       double w = r2 * (tb - ta) / h;
       sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), w));
     }

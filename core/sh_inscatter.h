@@ -16,9 +16,11 @@ extern "C" {
 
 /* Estimates one light's in-scattered radiance along o + t d (d unit) for t
  * in [t0, t1], a span inside the medium's bounds, with n stratified
- * samples. `rt` may be NULL for an unoccluded scene. *samples, if given, is
- * increased by the samples taken. */
+ * samples. `rt` may be NULL for an unoccluded scene; `hook`, if given with
+ * a volume function, provides the visibility instead (worker `thread`).
+ * *samples, if given, is increased by the samples taken. */
 sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
+                           const sh_shadow_hook *hook, int thread,
                            const sh_light *light, sh_vec3 o, sh_vec3 d,
                            double t0, double t1, int n, sh_rng *rng,
                            sh_rt_counters *c, uint64_t *samples);

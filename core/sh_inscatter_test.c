@@ -60,7 +60,7 @@ int main(void) {
     double b = sh_dot(w, q), h = sqrt(sh_dot(q, q) - b * b);
     double closed = ss * 100 / (4 * SH_PI * h) * (atan((D + b) / h) - atan(b / h));
     for (int n = 1; n <= 16; n *= 4) {
-      sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, D, n, &rng, NULL,
+      sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, c, w, 0, D, n, &rng, NULL,
                                        NULL);
       SH_CHECK_NEAR(est.x, closed, 1e-5, 0);
       SH_CHECK_NEAR(est.z, 3 * closed, 1e-5, 0);
@@ -77,7 +77,7 @@ int main(void) {
     l.intensity = sh_v3s(50);
     sh_vec3 c = sh_v3(-5, 0, 0), w = sh_v3(1, 0, 0);
     sh_vec3 ref = quadrature(&s, &l, c, w, 0, 10, 2000000);
-    sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, 10, 256, &rng,
+    sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, c, w, 0, 10, 256, &rng,
                                      NULL, NULL);
     SH_CHECK_NEAR(est.x, ref.x, 2e-3, 0);
     SH_CHECK_NEAR(est.y, ref.y, 2e-3, 0);
@@ -98,7 +98,7 @@ int main(void) {
     sh_light_prepare(&l, sh_v3(0, 1, 0), 0, NULL);
     sh_vec3 c = sh_v3(-4, 0.2, 0.3), w = sh_normalize(sh_v3(1, 0.05, 0));
     sh_vec3 ref = quadrature(&s, &l, c, w, 0, 8, 2000000);
-    sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, 8, 256, &rng, NULL,
+    sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, c, w, 0, 8, 256, &rng, NULL,
                                      NULL);
     SH_CHECK(ref.x > 0);
     SH_CHECK_NEAR(est.x, ref.x, 2e-3, 0);
@@ -128,7 +128,7 @@ int main(void) {
       double ss = sh_vget(s.medium.sigma_s, k), st = sh_vget(s.medium.sigma_t, k);
       double closed = ss * p * sh_vget(l.irradiance, k) * exp(-st * depth) *
                       (1 - exp(-st * D)) / st;
-      sh_vec3 est = sh_inscatter_light(&s, NULL, &l, c, w, 0, D, 1024, &rng,
+      sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, c, w, 0, D, 1024, &rng,
                                        NULL, NULL);
       SH_CHECK_NEAR(sh_vget(est, k), closed, 1e-3, 0);
     }

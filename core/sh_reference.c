@@ -25,9 +25,11 @@ typedef struct job {
 
 typedef struct worker {
   job *job;
+  int index;
   pthread_t thread;
   sh_rt_counters counters;
   uint64_t samples, camera_rays;
+  sh_vec3 *vis; /* per-light scratch for the shadow hook */
 } worker;
 
 static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng);
@@ -35,12 +37,16 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng);
 /* Light arriving at surface point p (normal n facing the viewer) from every
  * light, shaded with Lambert and Phong terms. */
 static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
-                            sh_vec3 n, sh_vec3 d) {
+                            sh_vec3 n, sh_vec3 d, int shape) {
   const sh_scene *scene = w->job->scene;
   sh_vec3 sum = sh_v3s(0.0);
   int has_spec = !sh_is_black(mat->specular);
   if (sh_is_black(mat->diffuse) && !has_spec) return sum;
   sh_vec3 origin = sh_rt_offset(p, n);
+  const sh_shadow_hook *hook = w->job->opt->hook;
+  int hooked = hook && hook->surface &&
+               hook->surface(hook->user, w->index, p, n, shape, w->vis,
+                             &w->counters);
   for (int i = 0; i < scene->nlights; i++) {
     const sh_light *l = &scene->lights[i];
     sh_vec3 wi;
@@ -49,7 +55,9 @@ static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
     double cosl = sh_dot(n, wi);
     if (cosl <= 0 || sh_is_black(e)) continue;
     double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
-    sh_vec3 vis = sh_rt_visibility(w->job->rt, origin, wi, tmax, &w->counters);
+    sh_vec3 vis = hooked ? w->vis[i]
+                         : sh_rt_visibility(w->job->rt, origin, wi, tmax,
+                                            &w->counters);
     if (sh_is_black(vis)) continue;
     double len = isinf(dist) ? sh_medium_length_ray(&scene->medium, p, wi)
                              : sh_medium_length(&scene->medium, p, l->position);
@@ -71,17 +79,20 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
   int entering = sh_dot(h->ng, d) < 0;
   sh_vec3 n = entering ? h->ng : sh_neg(h->ng);
   sh_vec3 L = sh_add(mat->emission, sh_mul(scene->ambient, mat->diffuse));
-  L = sh_add(L, direct_light(w, mat, h->p, n, d));
-  if (depth >= w->job->opt->max_depth) return L;
+  L = sh_add(L, direct_light(w, mat, h->p, n, d, h->shape));
+  const sh_reference_options *opt = w->job->opt;
+  if (depth >= opt->max_depth) return L;
   sh_vec3 reflected = sh_reflect(d, n);
-  if (!sh_is_black(mat->reflect))
+  if (!opt->local && !sh_is_black(mat->reflect))
     L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset(h->p, n),
                                              reflected, depth + 1, rng)));
   if (!sh_is_black(mat->transmit)) {
     /* Snell's law; the inside of a closed shape has index `ior`. Total
      * internal reflection sends the transmitted weight along the mirror
      * direction. */
-    double eta = entering ? 1.0 / mat->ior : mat->ior;
+    double eta = opt->local || !opt->refract ? 1.0
+                 : entering             ? 1.0 / mat->ior
+                                        : mat->ior;
     double ci = -sh_dot(n, d);
     double k = 1.0 - eta * eta * (1.0 - ci * ci);
     sh_vec3 dir, org;
@@ -92,6 +103,7 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
       dir = sh_normalize(sh_madd(sh_scale(d, eta), n, eta * ci - sqrt(k)));
       org = sh_rt_offset(h->p, sh_neg(n));
     }
+    if (eta == 1.0) dir = d; /* straight on, exactly */
     L = sh_add(L, sh_mul(mat->transmit, trace(w, org, dir, depth + 1, rng)));
   }
   return L;
@@ -108,7 +120,8 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
   if (m->present && sh_box_clip(m->bmin, m->bmax, o, d, 0.0, tend, &t0, &t1)) {
     L = sh_mul(L, sh_medium_tr(m, t1 - t0));
     for (int i = 0; i < scene->nlights; i++)
-      L = sh_add(L, sh_inscatter_light(scene, w->job->rt, &scene->lights[i], o,
+      L = sh_add(L, sh_inscatter_light(scene, w->job->rt, w->job->opt->hook,
+                                       w->index, &scene->lights[i], o,
                                        d, t0, t1, w->job->opt->spp, rng,
                                        &w->counters, &w->samples));
   }
@@ -146,7 +159,14 @@ sh_reference_options sh_reference_defaults(const sh_scene *scene) {
   o.max_depth = scene->render.max_depth;
   o.seed = scene->render.seed;
   o.progress = 1;
+  o.refract = 1;
   return o;
+}
+
+int sh_reference_threads(int threads) {
+  if (threads > 0) return threads;
+  long n = sysconf(_SC_NPROCESSORS_ONLN);
+  return n > 0 ? (int)n : 1;
 }
 
 sh_status sh_render_reference(const sh_scene *scene,
@@ -166,20 +186,21 @@ sh_status sh_render_reference(const sh_scene *scene,
   jb.img = out;
   sh_camera_frame_init(&scene->camera, &jb.frame);
   sh_rt *rt = NULL;
-  st = sh_rt_create(scene, &rt, err);
-  if (st != SH_OK) {
-    sh_image_free(out);
-    return st;
+  if (!opt->rt) {
+    st = sh_rt_create(scene, &rt, err);
+    if (st != SH_OK) {
+      sh_image_free(out);
+      return st;
+    }
   }
-  jb.rt = rt;
-  int nthreads = opt->threads;
-  if (nthreads == 0) {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    nthreads = n > 0 ? (int)n : 1;
-  }
+  jb.rt = opt->rt ? opt->rt : rt;
+  int nthreads = sh_reference_threads(opt->threads);
   if (nthreads > out->height) nthreads = out->height;
   worker *ws = calloc((size_t)nthreads, sizeof *ws);
-  if (!ws) {
+  sh_vec3 *vis = calloc((size_t)nthreads * (scene->nlights + 1), sizeof *vis);
+  if (!ws || !vis) {
+    free(ws);
+    free(vis);
     sh_rt_free(rt);
     sh_image_free(out);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -188,6 +209,8 @@ sh_status sh_render_reference(const sh_scene *scene,
   int started = 0;
   for (int i = 0; i < nthreads; i++) {
     ws[i].job = &jb;
+    ws[i].index = i;
+    ws[i].vis = vis + (size_t)i * (scene->nlights + 1);
     if (i > 0 && pthread_create(&ws[i].thread, NULL, work, &ws[i]) != 0) break;
     started++;
   }
@@ -206,6 +229,7 @@ sh_status sh_render_reference(const sh_scene *scene,
     stats->seconds = sh_seconds() - start;
   }
   free(ws);
+  free(vis);
   sh_rt_free(rt);
   if (opt->cancel && *opt->cancel) {
     sh_image_free(out);

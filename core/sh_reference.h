@@ -18,6 +18,7 @@
 
 #include "sh_error.h"
 #include "sh_image.h"
+#include "sh_rt.h"
 #include "sh_scene.h"
 
 #ifdef __cplusplus
@@ -31,6 +32,14 @@ typedef struct sh_reference_options {
   int threads;       /* 0: one per online CPU */
   int progress;      /* 1: progress bar on stderr when it is a terminal */
   volatile int *cancel; /* optional: set to non-zero to stop early */
+  /* 1 (default): transmitted rays refract by Snell's law; 0: they go on
+   * straight, as OpenGL shows semitransparent surfaces. */
+  int refract;
+  /* 1: the local illumination model with shadows (formula 1 of Debelov et
+   * al.): no mirror rays; transmitted rays go on straight. Default 0. */
+  int local;
+  const sh_rt *rt;            /* optional: a prebuilt sh_rt of the scene */
+  const sh_shadow_hook *hook; /* optional */
 } sh_reference_options;
 
 typedef struct sh_reference_stats {
@@ -39,7 +48,11 @@ typedef struct sh_reference_stats {
   int threads;
 } sh_reference_stats;
 
-/* Options from the scene's render settings, with threads = 0, progress on. */
+/* The number of worker threads `threads` resolves to (0: one per CPU). */
+int sh_reference_threads(int threads);
+
+/* Options from the scene's render settings, with threads = 0, progress on,
+ * refraction on. */
 sh_reference_options sh_reference_defaults(const sh_scene *scene);
 
 /* Renders `scene` into `out`, which the call allocates at the camera's size

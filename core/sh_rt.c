@@ -20,14 +20,15 @@ typedef struct sh__prim {
   /* Cylinder frame in object space. */
   sh_vec3 axis;
   double length;
+  unsigned mask; /* the shape's SH_RT_* class bit */
 } sh__prim;
 
 struct sh_rt {
   RTCDevice device;
-  RTCScene all, opaque, semi;
+  RTCScene scene_all; /* every shape, with its class as geometry mask */
   const sh_scene *scene;
   sh__prim *prims;
-  int has_semi;
+  unsigned classes; /* the union of the shapes' classes */
   sh_status device_status;
   char device_message[256];
 };
@@ -140,7 +141,8 @@ static void analytic_intersect(const struct RTCIntersectFunctionNArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
   float *rh = (float *)a->rayhit;
   for (unsigned i = 0; i < a->N; i++) {
-    if (a->valid[i] != -1) continue;
+    if (a->valid[i] != -1 || !(SOA_U(rh, RAY_MASK, a->N, i) & pr->mask))
+      continue;
     double t;
     sh_vec3 n;
     if (!analytic_query(pr, rh, a->N, i, &t, &n)) continue;
@@ -160,7 +162,8 @@ static void analytic_occluded(const struct RTCOccludedFunctionNArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
   float *ray = (float *)a->ray;
   for (unsigned i = 0; i < a->N; i++) {
-    if (a->valid[i] != -1) continue;
+    if (a->valid[i] != -1 || !(SOA_U(ray, RAY_MASK, a->N, i) & pr->mask))
+      continue;
     double t;
     sh_vec3 n;
     if (analytic_query(pr, ray, a->N, i, &t, &n))
@@ -251,6 +254,7 @@ static RTCGeometry make_geometry(sh_rt *rt, sh__prim *pr) {
     memcpy(vb, pr->verts, sizeof(float) * 3 * (size_t)pr->nverts);
     memcpy(ib, pr->indices, sizeof(unsigned) * 3 * (size_t)pr->ntris);
   }
+  rtcSetGeometryMask(g, pr->mask);
   rtcCommitGeometry(g);
   return g;
 }
@@ -261,8 +265,11 @@ static RTCScene new_scene(sh_rt *rt) {
   return s;
 }
 
-static int is_semi(const sh_scene *scene, const sh_shape *s) {
-  return !sh_is_black(scene->materials[s->material].transmit);
+static unsigned shape_class(const sh_scene *scene, const sh_shape *s) {
+  const sh_material *m = &scene->materials[s->material];
+  int semi = !sh_is_black(m->transmit);
+  if (m->casts_soft_shadows) return semi ? SH_RT_SEMI_SOFT : SH_RT_OPAQUE_SOFT;
+  return semi ? SH_RT_SEMI_HARD : SH_RT_OPAQUE_HARD;
 }
 
 sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
@@ -277,34 +284,32 @@ sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
   }
   rtcSetDeviceErrorFunction(rt->device, on_device_error, rt);
   rt->prims = calloc((size_t)scene->nshapes + 1, sizeof *rt->prims);
-  rt->all = new_scene(rt);
-  rt->opaque = new_scene(rt);
-  rt->semi = new_scene(rt);
+  rt->scene_all = new_scene(rt);
   sh_status st = SH_OK;
-  if (!rt->prims || !rt->all || !rt->opaque || !rt->semi)
+  if (!rt->prims || !rt->scene_all)
     st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  else if (!rtcGetDeviceProperty(rt->device,
+                                 RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED))
+    st = sh_error_set(err, SH_ERR_DEVICE,
+                      "this Embree library was built without ray masks, "
+                      "which the renderer needs");
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++) {
     const sh_shape *s = &scene->shapes[i];
     sh__prim *pr = &rt->prims[i];
     st = prim_init(pr, s, err);
     if (st != SH_OK) break;
-    int semi = is_semi(scene, s);
-    rt->has_semi |= semi;
-    RTCScene targets[2] = {rt->all, semi ? rt->semi : rt->opaque};
-    for (int k = 0; k < 2; k++) {
-      RTCGeometry g = make_geometry(rt, pr);
-      if (!g) {
-        st = sh_error_set(err, SH_ERR_DEVICE, "cannot create geometry");
-        break;
-      }
-      rtcAttachGeometryByID(targets[k], g, (unsigned)i);
-      rtcReleaseGeometry(g);
+    pr->mask = shape_class(scene, s);
+    rt->classes |= pr->mask;
+    RTCGeometry g = make_geometry(rt, pr);
+    if (!g) {
+      st = sh_error_set(err, SH_ERR_DEVICE, "cannot create geometry");
+      break;
     }
+    rtcAttachGeometryByID(rt->scene_all, g, (unsigned)i);
+    rtcReleaseGeometry(g);
   }
   if (st == SH_OK) {
-    rtcCommitScene(rt->all);
-    rtcCommitScene(rt->opaque);
-    rtcCommitScene(rt->semi);
+    rtcCommitScene(rt->scene_all);
     if (rt->device_status != SH_OK)
       st = sh_error_set(err, rt->device_status, "%s", rt->device_message);
   }
@@ -318,9 +323,7 @@ sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
 
 void sh_rt_free(sh_rt *rt) {
   if (!rt) return;
-  if (rt->all) rtcReleaseScene(rt->all);
-  if (rt->opaque) rtcReleaseScene(rt->opaque);
-  if (rt->semi) rtcReleaseScene(rt->semi);
+  if (rt->scene_all) rtcReleaseScene(rt->scene_all);
   if (rt->prims)
     for (int i = 0; i < rt->scene->nshapes; i++) {
       free(rt->prims[i].verts);
@@ -332,7 +335,7 @@ void sh_rt_free(sh_rt *rt) {
 }
 
 static void set_ray(struct RTCRay *r, sh_vec3 o, sh_vec3 d, double tmin,
-                    double tmax) {
+                    double tmax, unsigned mask) {
   r->org_x = (float)o.x;
   r->org_y = (float)o.y;
   r->org_z = (float)o.z;
@@ -342,23 +345,23 @@ static void set_ray(struct RTCRay *r, sh_vec3 o, sh_vec3 d, double tmin,
   r->tnear = (float)tmin;
   r->tfar = tmax >= FLT_MAX ? INFINITY : (float)tmax;
   r->time = 0.0f;
-  r->mask = 0xFFFFFFFFu;
+  r->mask = mask;
   r->id = 0;
   r->flags = 0;
 }
 
-static int closest(RTCScene scene, const sh_rt *rt, sh_vec3 o, sh_vec3 d,
+static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
                    double tmin, double tmax, sh_hit *hit) {
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   struct RTCRayHit rh;
-  set_ray(&rh.ray, o, d, tmin, tmax);
+  set_ray(&rh.ray, o, d, tmin, tmax, mask);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rh.hit.Ng_x = rh.hit.Ng_y = rh.hit.Ng_z = 0.0f;
   rh.hit.u = rh.hit.v = 0.0f;
-  rtcIntersect1(scene, &ctx, &rh);
+  rtcIntersect1(rt->scene_all, &ctx, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
   const sh__prim *pr = &rt->prims[rh.hit.geomID];
   hit->shape = (int)rh.hit.geomID;
@@ -390,27 +393,35 @@ static int closest(RTCScene scene, const sh_rt *rt, sh_vec3 o, sh_vec3 d,
 int sh_rt_intersect(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmin,
                     double tmax, sh_hit *hit, sh_rt_counters *c) {
   if (c) c->closest++;
-  return closest(rt->all, rt, o, d, tmin, tmax, hit);
+  return closest(rt, SH_RT_ALL, o, d, tmin, tmax, hit);
 }
 
-sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
-                         sh_rt_counters *c) {
+int sh_rt_occluded(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                   unsigned classes, sh_rt_counters *c) {
+  if (!(classes & rt->classes)) return 0;
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   struct RTCRay r;
-  set_ray(&r, o, d, 0.0, tmax);
+  set_ray(&r, o, d, 0.0, tmax, classes);
   if (c) c->occlusion++;
-  rtcOccluded1(rt->opaque, &ctx, &r);
-  if (r.tfar < 0) return sh_v3s(0.0);
+  rtcOccluded1(rt->scene_all, &ctx, &r);
+  return r.tfar < 0;
+}
+
+sh_vec3 sh_rt_visibility_of(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                            unsigned classes, sh_rt_counters *c) {
+  unsigned opaque = classes & (SH_RT_OPAQUE_SOFT | SH_RT_OPAQUE_HARD);
+  unsigned semi = classes & (SH_RT_SEMI_SOFT | SH_RT_SEMI_HARD) & rt->classes;
+  if (sh_rt_occluded(rt, o, d, tmax, opaque, c)) return sh_v3s(0.0);
   sh_vec3 vis = sh_v3s(1.0);
-  if (!rt->has_semi) return vis;
+  if (!semi) return vis;
   /* Walk the semitransparent crossings in order; coincident hits (shared
    * edges, duplicate faces) fall within the step and count once. */
   double t = 0.0;
   sh_hit h;
   for (int k = 0; k < 256; k++) {
     if (c) c->closest++;
-    if (!closest(rt->semi, rt, o, d, t, tmax, &h)) break;
+    if (!closest(rt, semi, o, d, t, tmax, &h)) break;
     vis = sh_mul(vis, rt->scene->materials[rt->scene->shapes[h.shape].material]
                           .transmit);
     if (sh_max3(vis) <= 0) break;
@@ -418,6 +429,13 @@ sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
   }
   return vis;
 }
+
+sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                         sh_rt_counters *c) {
+  return sh_rt_visibility_of(rt, o, d, tmax, SH_RT_ALL, c);
+}
+
+unsigned sh_rt_classes(const sh_rt *rt) { return rt->classes; }
 
 static float offset_float(float p, float n) {
   const float origin = 1.0f / 32.0f, float_scale = 1.0f / 65536.0f;

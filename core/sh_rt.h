@@ -2,9 +2,9 @@
  *
  * Spheres and cylinders keep their exact form (Embree user geometry, in
  * object space under their transform); every other shape is triangles. One
- * Embree device with one error callback; three Embree scenes: all surfaces
- * (closest hits), the opaque ones (occlusion), the semitransparent ones
- * (transmittance of shadow rays). All calls on a built sh_rt are safe from
+ * Embree device with one error callback and one Embree scene, in which
+ * every shape carries its class (below) as geometry mask, so that a query
+ * can look at some classes only. All calls on a built sh_rt are safe from
  * several threads. */
 #ifndef SH_RT_H
 #define SH_RT_H
@@ -19,6 +19,20 @@ extern "C" {
 #endif
 
 typedef struct sh_rt sh_rt;
+
+/* Shape classes: opaque or semitransparent (a non-black transmit), and
+ * whether the material casts soft shadows in the light meshes method. */
+enum {
+  SH_RT_OPAQUE_SOFT = 1u,
+  SH_RT_OPAQUE_HARD = 2u,
+  SH_RT_SEMI_SOFT = 4u,
+  SH_RT_SEMI_HARD = 8u,
+  SH_RT_OPAQUE = SH_RT_OPAQUE_SOFT | SH_RT_OPAQUE_HARD,
+  SH_RT_SEMI = SH_RT_SEMI_SOFT | SH_RT_SEMI_HARD,
+  SH_RT_SOFT = SH_RT_OPAQUE_SOFT | SH_RT_SEMI_SOFT,
+  SH_RT_HARD = SH_RT_OPAQUE_HARD | SH_RT_SEMI_HARD,
+  SH_RT_ALL = 15u
+};
 
 /* Per-thread ray counts, for statistics. */
 typedef struct sh_rt_counters {
@@ -47,6 +61,34 @@ int sh_rt_intersect(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmin,
  * many coincident primitives report it). */
 sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
                          sh_rt_counters *c);
+
+/* A replacement for the hard-shadow visibility of lights, for methods that
+ * compute it otherwise (the light meshes method, area-light sampling).
+ * Either function may be NULL, and either may return 0 to fall back to
+ * shadow rays for that point. `thread` is the worker's index, in
+ * [0, threads). */
+typedef struct sh_shadow_hook {
+  /* Fills vis[0 .. nlights-1] with the visibility of every light from the
+   * surface point p with unit normal n (facing the viewer) on shape
+   * `shape`. The tracer still skips lights behind the surface. */
+  int (*surface)(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
+                 sh_vec3 *vis, sh_rt_counters *c);
+  /* The visibility of light `light` from point x in the medium. */
+  int (*volume)(void *user, int thread, sh_vec3 x, int light, sh_vec3 *vis,
+                sh_rt_counters *c);
+  void *user;
+} sh_shadow_hook;
+
+/* As sh_rt_visibility, counting only the surfaces of the given classes. */
+sh_vec3 sh_rt_visibility_of(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                            unsigned classes, sh_rt_counters *c);
+
+/* 1 if any surface of the given classes lies on o + t d, t in (0, tmax). */
+int sh_rt_occluded(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
+                   unsigned classes, sh_rt_counters *c);
+
+/* The union of the classes of the scene's shapes. */
+unsigned sh_rt_classes(const sh_rt *rt);
 
 /* A ray origin for leaving surface point p along a direction on the side of
  * the unit normal n (pass -n for the other side): p moved off the surface
