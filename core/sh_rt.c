@@ -173,23 +173,8 @@ static void analytic_occluded(const struct RTCOccludedFunctionNArguments *a) {
 
 static void analytic_bounds(const struct RTCBoundsFunctionArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
-  const sh_shape *s = pr->shape;
-  sh_vec3 lo, hi;
-  if (s->type == SH_SHAPE_SPHERE) {
-    lo = sh_sub(s->center, sh_v3s(s->radius));
-    hi = sh_add(s->center, sh_v3s(s->radius));
-  } else {
-    lo = sh_sub(sh_vmin(s->base, s->top), sh_v3s(s->radius));
-    hi = sh_add(sh_vmax(s->base, s->top), sh_v3s(s->radius));
-  }
-  sh_vec3 wlo = sh_v3s(INFINITY), whi = sh_v3s(-INFINITY);
-  for (int k = 0; k < 8; k++) {
-    sh_vec3 c = sh_v3(k & 1 ? hi.x : lo.x, k & 2 ? hi.y : lo.y,
-                      k & 4 ? hi.z : lo.z);
-    sh_vec3 w = sh_xform_point(&s->xform, c);
-    wlo = sh_vmin(wlo, w);
-    whi = sh_vmax(whi, w);
-  }
+  sh_vec3 wlo, whi;
+  sh_shape_bounds(pr->shape, &wlo, &whi);
   /* Pad by a relative epsilon: the bounds must hold the float hits. */
   double pad = 1e-6 * (sh_max3(sh_vmax(sh_neg(wlo), whi)) + 1.0);
   a->bounds_o->lower_x = (float)(wlo.x - pad);

@@ -82,6 +82,22 @@ static int shape_object_bounds(const sh_shape *s, sh_vec3 *lo, sh_vec3 *hi) {
   return 0;
 }
 
+int sh_shape_bounds(const sh_shape *s, sh_vec3 *lo, sh_vec3 *hi) {
+  sh_vec3 olo, ohi;
+  if (!shape_object_bounds(s, &olo, &ohi)) return 0;
+  /* The world box of the transformed object box: its 8 corners. */
+  *lo = sh_v3s(DBL_MAX);
+  *hi = sh_v3s(-DBL_MAX);
+  for (int k = 0; k < 8; k++) {
+    sh_vec3 p = sh_v3(k & 1 ? ohi.x : olo.x, k & 2 ? ohi.y : olo.y,
+                      k & 4 ? ohi.z : olo.z);
+    p = sh_xform_point(&s->xform, p);
+    *lo = sh_vmin(*lo, p);
+    *hi = sh_vmax(*hi, p);
+  }
+  return 1;
+}
+
 void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax) {
   sh_vec3 lo = sh_v3s(DBL_MAX), hi = sh_v3s(-DBL_MAX);
   if (scene->medium.present) {
@@ -96,17 +112,10 @@ void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax) {
     }
   }
   for (int i = 0; i < scene->nshapes; i++) {
-    const sh_shape *s = &scene->shapes[i];
-    sh_vec3 olo, ohi;
-    if (!shape_object_bounds(s, &olo, &ohi)) continue;
-    /* The world box of the transformed object box: its 8 corners. */
-    for (int k = 0; k < 8; k++) {
-      sh_vec3 p = sh_v3(k & 1 ? ohi.x : olo.x, k & 2 ? ohi.y : olo.y,
-                        k & 4 ? ohi.z : olo.z);
-      p = sh_xform_point(&s->xform, p);
-      lo = sh_vmin(lo, p);
-      hi = sh_vmax(hi, p);
-    }
+    sh_vec3 slo, shi;
+    if (!sh_shape_bounds(&scene->shapes[i], &slo, &shi)) continue;
+    lo = sh_vmin(lo, slo);
+    hi = sh_vmax(hi, shi);
   }
   if (lo.x > hi.x) lo = hi = sh_v3s(0.0);
   *bmin = lo;

@@ -162,6 +162,10 @@ void sh_scene_free(sh_scene *scene);
 /* True if any material has a non-black transmit colour. */
 int sh_scene_has_semitransparent(const sh_scene *scene);
 
+/* The world-space box that holds the shape (its object box, transformed).
+ * Returns 0 for a shape with no extent (an empty mesh). */
+int sh_shape_bounds(const sh_shape *shape, sh_vec3 *bmin, sh_vec3 *bmax);
+
 /* The world-space box that holds every shape and light position (and the
  * medium's bounds). */
 void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax);
