@@ -1,0 +1,37 @@
+/* Refracted light paths for the refract-both scheme of the light meshes
+ * method: formula 6's sum over paths through semitransparent surfaces.
+ *
+ * Rays leave every light towards every semitransparent shape, refract at
+ * every semitransparent surface they cross (Snell's law with the material's
+ * ior; total internal reflection reflects), carry the product of the
+ * `transmit` colours, and stop at opaque surfaces. Once a ray has refracted,
+ * each mesh point it passes within a distance rho (the mesh step) of is
+ * credited with its transmittance divided by the number of rays the light
+ * would send through a disc of radius rho there without the lens. A mesh
+ * point's value is then the ratio of refracted irradiance to the light's
+ * unobstructed irradiance: a light-collecting lens gives values above 1 at
+ * its focus. */
+#ifndef LMM_CAUSTIC_H
+#define LMM_CAUSTIC_H
+
+#include <stdint.h>
+
+#include "lmm_mesh.h"
+#include "sh_error.h"
+#include "sh_rt.h"
+#include "sh_scene.h"
+
+/* Traces `rays` rays per light and semitransparent shape and credits the
+ * points of `mesh`'s grid. Caller frees with lmm_caustics_free. */
+sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
+                             const lmm_mesh *mesh, int64_t rays,
+                             lmm_caustics **out, sh_error *err);
+void lmm_caustics_free(lmm_caustics *c);
+
+/* The refracted visibility of light `light` at grid point (i, j, k). */
+sh_vec3 lmm_caustics_at(const lmm_caustics *c, int i, int j, int k, int light);
+
+/* The number of grid points credited, for statistics. */
+int64_t lmm_caustics_points(const lmm_caustics *c);
+
+#endif

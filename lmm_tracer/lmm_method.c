@@ -1,0 +1,227 @@
+#include "lmm_method.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lmm_caustic.h"
+#include "sh_light.h"
+#include "sh_progress.h"
+
+typedef struct scratch {
+  sh_vec3 *values; /* one mesh point's values */
+  sh_vec3 *acc;    /* the running sums of formula 7 */
+  int64_t shaded, empty, candidates, volume;
+  char pad[64];
+} scratch;
+
+struct lmm {
+  const sh_scene *scene;
+  const sh_rt *rt;
+  lmm_options opt;
+  lmm_mesh *mesh;
+  lmm_caustics *caustics;
+  sh_shadow_hook hook;
+  scratch *scratch;
+  int threads;
+  int semi, hard;
+  double build_seconds;
+};
+
+/* The exact visibility of a light from p (leaving along n), restricted to
+ * the surfaces of the given classes. */
+static sh_vec3 exact(const lmm *L, sh_vec3 origin, sh_vec3 p, const sh_light *l,
+                     unsigned classes, sh_rt_counters *c) {
+  sh_vec3 wi;
+  double dist;
+  sh_light_incident(l, p, &wi, &dist);
+  double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
+  return sh_rt_visibility_of(L->rt, origin, wi, tmax, classes, c);
+}
+
+/* xi(i, P): 1 if the light lies on the outer side of the surface at P. */
+static int outer_side(const sh_light *l, sh_vec3 p, sh_vec3 n) {
+  if (l->type == SH_LIGHT_DIRECTIONAL) return -sh_dot(l->direction, n) > 0;
+  return sh_dot(sh_sub(l->position, p), n) > 0;
+}
+
+static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
+                   sh_vec3 *vis, sh_rt_counters *c) {
+  lmm *L = user;
+  scratch *sc = &L->scratch[thread];
+  const sh_scene *scene = L->scene;
+  if (!scene->materials[scene->shapes[shape].material].receives_soft_shadows)
+    return 0;
+  sc->shaded++;
+  int nl = scene->nlights;
+  double h = lmm_mesh_step(L->mesh), r = h * L->opt.kl;
+  int lo[3], hi[3];
+  lmm_mesh_cell(L->mesh, sh_sub(p, sh_v3s(r)), lo);
+  lmm_mesh_cell(L->mesh, sh_add(p, sh_v3s(r)), hi);
+  for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s(0.0);
+  sh_vec3 origin = sh_rt_offset(p, n);
+  int m = 0;
+  for (int k = lo[2]; k <= hi[2] + 1; k++)
+    for (int j = lo[1]; j <= hi[1] + 1; j++)
+      for (int i = lo[0]; i <= hi[0] + 1; i++) {
+        if (!lmm_mesh_contains(L->mesh, i, j, k)) continue;
+        sh_vec3 x = lmm_mesh_point(L->mesh, i, j, k), dx = sh_sub(x, p);
+        if (sh_dot(dx, dx) > r * r || sh_dot(n, dx) <= 0) continue;
+        /* Step 3: x must be visible from P through opaque surfaces; the
+         * semitransparent ones between weigh it by v(x, P). */
+        sh_vec3 to = sh_sub(x, origin);
+        double dist = sh_length(to);
+        if (dist <= 0) continue;
+        sh_vec3 dir = sh_scale(to, 1.0 / dist);
+        sc->candidates++;
+        sh_vec3 vxp;
+        if (L->semi)
+          vxp = sh_rt_visibility(L->rt, origin, dir, dist, c);
+        else
+          vxp = sh_v3s(sh_rt_occluded(L->rt, origin, dir, dist, SH_RT_OPAQUE, c)
+                           ? 0.0
+                           : 1.0);
+        if (sh_is_black(vxp)) continue;
+        m++;
+        lmm_mesh_values(L->mesh, i, j, k, sc->values, c);
+        for (int l = 0; l < nl; l++)
+          sc->acc[l] = sh_add(sc->acc[l], sh_mul(vxp, sc->values[l]));
+      }
+  if (m == 0) {
+    sc->empty++;
+    return 0; /* formula 3: exact shadow rays */
+  }
+  for (int l = 0; l < nl; l++) {
+    const sh_light *light = &scene->lights[l];
+    if (!light->soft_shadows) {
+      vis[l] = exact(L, origin, p, light, SH_RT_ALL, c);
+      continue;
+    }
+    vis[l] = outer_side(light, p, n) ? sh_scale(sc->acc[l], 1.0 / m)
+                                     : sh_v3s(0.0);
+    if (L->hard && !sh_is_black(vis[l]))
+      vis[l] = sh_mul(vis[l], exact(L, origin, p, light, SH_RT_HARD, c));
+  }
+  return 1;
+}
+
+static int volume(void *user, int thread, sh_vec3 x, int light, sh_vec3 *vis,
+                  sh_rt_counters *c) {
+  lmm *L = user;
+  scratch *sc = &L->scratch[thread];
+  const sh_light *l = &L->scene->lights[light];
+  if (!l->soft_shadows || L->hard) return 0;
+  int ijk[3];
+  lmm_mesh_cell(L->mesh, x, ijk);
+  sh_vec3 base = lmm_mesh_point(L->mesh, ijk[0], ijk[1], ijk[2]);
+  sh_vec3 f = sh_scale(sh_sub(x, base), 1.0 / lmm_mesh_step(L->mesh));
+  sh_vec3 sum = sh_v3s(0.0);
+  for (int corner = 0; corner < 8; corner++) {
+    int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
+    if (!lmm_mesh_contains(L->mesh, ijk[0] + di, ijk[1] + dj, ijk[2] + dk))
+      return 0;
+    double w = (di ? f.x : 1 - f.x) * (dj ? f.y : 1 - f.y) *
+               (dk ? f.z : 1 - f.z);
+    if (w == 0) continue;
+    lmm_mesh_values(L->mesh, ijk[0] + di, ijk[1] + dj, ijk[2] + dk,
+                    sc->values, c);
+    sum = sh_madd(sum, sc->values[light], w);
+  }
+  sc->volume++;
+  *vis = sum;
+  return 1;
+}
+
+double lmm_default_step(const sh_scene *scene) {
+  sh_vec3 lo = sh_v3s(INFINITY), hi = sh_v3s(-INFINITY);
+  for (int i = 0; i < scene->nshapes; i++) {
+    sh_vec3 a, b;
+    if (!sh_shape_bounds(&scene->shapes[i], &a, &b)) continue;
+    lo = sh_vmin(lo, a);
+    hi = sh_vmax(hi, b);
+  }
+  if (!(lo.x <= hi.x)) sh_scene_bounds(scene, &lo, &hi);
+  double diag = sh_length(sh_sub(hi, lo));
+  return diag > 0 ? diag / 100.0 : 0.01;
+}
+
+sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
+                     const lmm_options *opt, int threads, lmm **out,
+                     sh_error *err) {
+  *out = NULL;
+  if (!(opt->h > 0) || !(opt->kl > 0) || threads < 1)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the mesh step and kl must be > 0, threads >= 1");
+  lmm *L = calloc(1, sizeof *L);
+  if (!L) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  L->scene = scene;
+  L->rt = rt;
+  L->opt = *opt;
+  L->threads = threads;
+  L->semi = sh_scene_has_semitransparent(scene);
+  L->hard = (sh_rt_classes(rt) & SH_RT_HARD) != 0;
+  sh_status st = lmm_mesh_create(scene, rt, opt->h, opt->capacity_log2,
+                                 &L->mesh, err);
+  if (st != SH_OK) {
+    lmm_free(L);
+    return st;
+  }
+  if (opt->scheme == SH_SCHEME_REFRACT_BOTH && L->semi) {
+    double t0 = sh_seconds();
+    st = lmm_caustics_build(scene, rt, L->mesh, opt->caustic_rays,
+                            &L->caustics, err);
+    if (st != SH_OK) {
+      lmm_free(L);
+      return st;
+    }
+    lmm_mesh_set_caustics(L->mesh, L->caustics);
+    L->build_seconds = sh_seconds() - t0;
+  }
+  int nl = scene->nlights > 0 ? scene->nlights : 1;
+  L->scratch = calloc((size_t)threads, sizeof *L->scratch);
+  if (!L->scratch) {
+    lmm_free(L);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  for (int t = 0; t < threads; t++) {
+    L->scratch[t].values = calloc((size_t)nl, sizeof(sh_vec3));
+    L->scratch[t].acc = calloc((size_t)nl, sizeof(sh_vec3));
+    if (!L->scratch[t].values || !L->scratch[t].acc) {
+      lmm_free(L);
+      return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    }
+  }
+  L->hook.surface = surface;
+  L->hook.volume = opt->volume ? volume : NULL;
+  L->hook.user = L;
+  *out = L;
+  return SH_OK;
+}
+
+void lmm_free(lmm *L) {
+  if (!L) return;
+  if (L->scratch)
+    for (int t = 0; t < L->threads; t++) {
+      free(L->scratch[t].values);
+      free(L->scratch[t].acc);
+    }
+  free(L->scratch);
+  lmm_mesh_free(L->mesh);
+  lmm_caustics_free(L->caustics);
+  free(L);
+}
+
+const sh_shadow_hook *lmm_hook(const lmm *L) { return &L->hook; }
+
+void lmm_get_stats(const lmm *L, lmm_stats *st) {
+  memset(st, 0, sizeof *st);
+  lmm_mesh_get_stats(L->mesh, &st->mesh);
+  for (int t = 0; t < L->threads; t++) {
+    st->shaded_points += L->scratch[t].shaded;
+    st->empty_sets += L->scratch[t].empty;
+    st->candidate_rays += L->scratch[t].candidates;
+    st->volume_lookups += L->scratch[t].volume;
+  }
+  st->caustic_points = L->caustics ? lmm_caustics_points(L->caustics) : 0;
+  st->build_seconds = L->build_seconds;
+}
