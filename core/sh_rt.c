@@ -422,6 +422,55 @@ sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
 
 unsigned sh_rt_classes(const sh_rt *rt) { return rt->classes; }
 
+enum { STREAM_BATCH = 256 };
+
+void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
+                            const sh_vec3 *d, double *t, int *shape,
+                            int coherent, sh_rt_counters *c) {
+  struct RTCRayHit rh[STREAM_BATCH];
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  for (int base = 0; base < n; base += STREAM_BATCH) {
+    int m = n - base < STREAM_BATCH ? n - base : STREAM_BATCH;
+    for (int i = 0; i < m; i++) {
+      set_ray(&rh[i].ray, o[base + i], d[base + i], 0.0, INFINITY, SH_RT_ALL);
+      rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rh[i].hit.Ng_x = rh[i].hit.Ng_y = rh[i].hit.Ng_z = 0.0f;
+      rh[i].hit.u = rh[i].hit.v = 0.0f;
+    }
+    rtcIntersect1M(rt->scene_all, &ctx, rh, (unsigned)m, sizeof rh[0]);
+    for (int i = 0; i < m; i++) {
+      int miss = rh[i].hit.geomID == RTC_INVALID_GEOMETRY_ID;
+      t[base + i] = miss ? INFINITY : rh[i].ray.tfar;
+      shape[base + i] = miss ? -1 : (int)rh[i].hit.geomID;
+    }
+  }
+  if (c) c->closest += (uint64_t)n;
+}
+
+void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
+                           const sh_vec3 *d, const double *tmax,
+                           unsigned classes, int coherent,
+                           unsigned char *occluded, sh_rt_counters *c) {
+  struct RTCRay r[STREAM_BATCH];
+  struct RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  for (int base = 0; base < n; base += STREAM_BATCH) {
+    int m = n - base < STREAM_BATCH ? n - base : STREAM_BATCH;
+    for (int i = 0; i < m; i++)
+      set_ray(&r[i], o[base + i], d[base + i], 0.0, tmax[base + i], classes);
+    rtcOccluded1M(rt->scene_all, &ctx, r, (unsigned)m, sizeof r[0]);
+    for (int i = 0; i < m; i++) occluded[base + i] = r[i].tfar < 0;
+  }
+  if (c) c->occlusion += (uint64_t)n;
+}
+
 static float offset_float(float p, float n) {
   const float origin = 1.0f / 32.0f, float_scale = 1.0f / 65536.0f;
   const float int_scale = 256.0f;

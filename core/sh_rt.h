@@ -87,6 +87,21 @@ sh_vec3 sh_rt_visibility_of(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
 int sh_rt_occluded(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
                    unsigned classes, sh_rt_counters *c);
 
+/* Closest hits of n rays at once through Embree's stream interface
+ * (rtcIntersect1M), faster for coherent rays such as a row of camera rays.
+ * Writes each ray's hit distance (INFINITY for a miss) to t[i] and its
+ * shape (-1 for a miss) to shape[i]. */
+void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
+                            const sh_vec3 *d, double *t, int *shape,
+                            int coherent, sh_rt_counters *c);
+
+/* Occlusion of n segments at once (rtcOccluded1M) against the surfaces of
+ * the given classes: occluded[i] = 1 if something lies on segment i. */
+void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
+                           const sh_vec3 *d, const double *tmax,
+                           unsigned classes, int coherent, unsigned char *occluded,
+                           sh_rt_counters *c);
+
 /* The union of the classes of the scene's shapes. */
 unsigned sh_rt_classes(const sh_rt *rt);
 
