@@ -11,6 +11,12 @@
 typedef struct scratch {
   sh_vec3 *values; /* one mesh point's values */
   sh_vec3 *acc;    /* the running sums of formula 7 */
+  /* The candidates of DLM(P): grid index, ray from P, its length. */
+  int *cand;
+  sh_vec3 *org, *dir;
+  double *len;
+  unsigned char *blocked;
+  int max_cand;
   int64_t shaded, empty, candidates, volume;
   char pad[64];
 } scratch;
@@ -60,33 +66,46 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
   lmm_mesh_cell(L->mesh, sh_add(p, sh_v3s(r)), hi);
   for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s(0.0);
   sh_vec3 origin = sh_rt_offset(p, n);
-  int m = 0;
+  /* Steps 1 and 2: the grid points in the sphere, on the front side. */
+  int nc = 0;
   for (int k = lo[2]; k <= hi[2] + 1; k++)
     for (int j = lo[1]; j <= hi[1] + 1; j++)
       for (int i = lo[0]; i <= hi[0] + 1; i++) {
-        if (!lmm_mesh_contains(L->mesh, i, j, k)) continue;
+        if (!lmm_mesh_contains(L->mesh, i, j, k) || nc == sc->max_cand) continue;
         sh_vec3 x = lmm_mesh_point(L->mesh, i, j, k), dx = sh_sub(x, p);
         if (sh_dot(dx, dx) > r * r || sh_dot(n, dx) <= 0) continue;
-        /* Step 3: x must be visible from P through opaque surfaces; the
-         * semitransparent ones between weigh it by v(x, P). */
         sh_vec3 to = sh_sub(x, origin);
         double dist = sh_length(to);
         if (dist <= 0) continue;
-        sh_vec3 dir = sh_scale(to, 1.0 / dist);
-        sc->candidates++;
-        sh_vec3 vxp;
-        if (L->semi)
-          vxp = sh_rt_visibility(L->rt, origin, dir, dist, c);
-        else
-          vxp = sh_v3s(sh_rt_occluded(L->rt, origin, dir, dist, SH_RT_OPAQUE, c)
-                           ? 0.0
-                           : 1.0);
-        if (sh_is_black(vxp)) continue;
-        m++;
-        lmm_mesh_values(L->mesh, i, j, k, sc->values, c);
-        for (int l = 0; l < nl; l++)
-          sc->acc[l] = sh_add(sc->acc[l], sh_mul(vxp, sc->values[l]));
+        sc->cand[3 * nc] = i;
+        sc->cand[3 * nc + 1] = j;
+        sc->cand[3 * nc + 2] = k;
+        sc->org[nc] = origin;
+        sc->dir[nc] = sh_scale(to, 1.0 / dist);
+        sc->len[nc] = dist;
+        nc++;
       }
+  sc->candidates += nc;
+  /* Step 3: x must be visible from P through opaque surfaces, tested as one
+   * stream of coherent rays; in semitransparent scenes the surfaces between
+   * weigh x by v(x, P). */
+  if (!L->semi)
+    sh_rt_occluded_stream(L->rt, nc, sc->org, sc->dir, sc->len, SH_RT_OPAQUE,
+                          1, sc->blocked, c);
+  int m = 0;
+  for (int q = 0; q < nc; q++) {
+    sh_vec3 vxp;
+    if (L->semi)
+      vxp = sh_rt_visibility(L->rt, origin, sc->dir[q], sc->len[q], c);
+    else
+      vxp = sh_v3s(sc->blocked[q] ? 0.0 : 1.0);
+    if (sh_is_black(vxp)) continue;
+    m++;
+    lmm_mesh_values(L->mesh, sc->cand[3 * q], sc->cand[3 * q + 1],
+                    sc->cand[3 * q + 2], sc->values, c);
+    for (int l = 0; l < nl; l++)
+      sc->acc[l] = sh_add(sc->acc[l], sh_mul(vxp, sc->values[l]));
+  }
   if (m == 0) {
     sc->empty++;
     return 0; /* formula 3: exact shadow rays */
@@ -149,9 +168,10 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
                      const lmm_options *opt, int threads, lmm **out,
                      sh_error *err) {
   *out = NULL;
-  if (!(opt->h > 0) || !(opt->kl > 0) || threads < 1)
+  if (!(opt->h > 0) || !(opt->kl > 0) || opt->kl > 16 || threads < 1)
     return sh_error_set(err, SH_ERR_ARG,
-                        "the mesh step and kl must be > 0, threads >= 1");
+                        "the mesh step must be > 0, kl in (0, 16], threads "
+                        ">= 1");
   lmm *L = calloc(1, sizeof *L);
   if (!L) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   L->scene = scene;
@@ -183,10 +203,21 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
     lmm_free(L);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
+  /* The grid points a sphere of radius kl steps can hold. */
+  int side = 2 * (int)ceil(opt->kl) + 3;
+  int max_cand = side * side * side;
   for (int t = 0; t < threads; t++) {
-    L->scratch[t].values = calloc((size_t)nl, sizeof(sh_vec3));
-    L->scratch[t].acc = calloc((size_t)nl, sizeof(sh_vec3));
-    if (!L->scratch[t].values || !L->scratch[t].acc) {
+    scratch *sc = &L->scratch[t];
+    sc->values = calloc((size_t)nl, sizeof(sh_vec3));
+    sc->acc = calloc((size_t)nl, sizeof(sh_vec3));
+    sc->max_cand = max_cand;
+    sc->cand = calloc((size_t)max_cand * 3, sizeof(int));
+    sc->org = calloc((size_t)max_cand, sizeof(sh_vec3));
+    sc->dir = calloc((size_t)max_cand, sizeof(sh_vec3));
+    sc->len = calloc((size_t)max_cand, sizeof(double));
+    sc->blocked = calloc((size_t)max_cand, 1);
+    if (!sc->values || !sc->acc || !sc->cand || !sc->org || !sc->dir ||
+        !sc->len || !sc->blocked) {
       lmm_free(L);
       return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
     }
@@ -202,8 +233,14 @@ void lmm_free(lmm *L) {
   if (!L) return;
   if (L->scratch)
     for (int t = 0; t < L->threads; t++) {
-      free(L->scratch[t].values);
-      free(L->scratch[t].acc);
+      scratch *sc = &L->scratch[t];
+      free(sc->values);
+      free(sc->acc);
+      free(sc->cand);
+      free(sc->org);
+      free(sc->dir);
+      free(sc->len);
+      free(sc->blocked);
     }
   free(L->scratch);
   lmm_mesh_free(L->mesh);
