@@ -1,0 +1,111 @@
+/* se_imgdiff: compares two linear EXR images over the lit region of the
+ * first (the reference) and prints the statistics as one JSON object.
+ *
+ *   se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]
+ *
+ * A pixel is lit when the mean of its reference channels exceeds FRACTION
+ * (default 0.01) times the largest such mean in the image. Printed:
+ *   lit        the number of lit pixels,
+ *   mean_rel   the mean over lit pixels of |test - ref| / ref, on the
+ *              channel means (the figure the tests bound),
+ *   ratio      sum(test) / sum(ref) over lit pixels (a systematic scale
+ *              error shows here),
+ *   max_rel    the largest per-pixel relative difference,
+ *   p90_rel    its 90th percentile.
+ * --map also prints a coarse grid of test/ref ratios for inspection.
+ * Exit status: 0, or 2 for bad arguments, unreadable images or images of
+ * different sizes. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sh_cli.h"
+#include "sh_image.h"
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+static double pixel_mean(const sh_image *img, int i) {
+  const float *p = img->rgb + 3 * (size_t)i;
+  return (p[0] + p[1] + p[2]) / 3.0;
+}
+
+int main(int argc, char **argv) {
+  const char *paths[2] = {NULL, NULL};
+  int npaths = 0, map = 0;
+  double frac = 0.01;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--lit") && i + 1 < argc) {
+      if (!sh_cli_double("se_imgdiff", "--lit", argv[++i], &frac)) return 2;
+    } else if (!strcmp(argv[i], "--map")) {
+      map = 1;
+    } else if (argv[i][0] != '-' && npaths < 2) {
+      paths[npaths++] = argv[i];
+    } else {
+      fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]\n");
+      return 2;
+    }
+  }
+  if (npaths != 2) {
+    fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]\n");
+    return 2;
+  }
+  sh_image img[2] = {{0}, {0}};
+  sh_error err;
+  for (int k = 0; k < 2; k++)
+    if (sh_image_read(paths[k], &img[k], &err) != SH_OK) {
+      int code = sh_cli_report("se_imgdiff", &err);
+      sh_image_free(&img[0]);
+      return code;
+    }
+  if (img[0].width != img[1].width || img[0].height != img[1].height) {
+    fprintf(stderr, "se_imgdiff: the images differ in size: %dx%d and %dx%d\n",
+            img[0].width, img[0].height, img[1].width, img[1].height);
+    sh_image_free(&img[0]);
+    sh_image_free(&img[1]);
+    return 2;
+  }
+  int n = img[0].width * img[0].height;
+  double peak = 0;
+  for (int i = 0; i < n; i++) {
+    double r = pixel_mean(&img[0], i);
+    if (r > peak) peak = r;
+  }
+  double *rel = malloc(sizeof *rel * (size_t)(n > 0 ? n : 1));
+  if (!rel) return 1;
+  int lit = 0;
+  double sum_rel = 0, sum_ref = 0, sum_test = 0;
+  for (int i = 0; i < n; i++) {
+    double r = pixel_mean(&img[0], i), t = pixel_mean(&img[1], i);
+    if (!(r > frac * peak) || peak <= 0) continue;
+    double d = (t > r ? t - r : r - t) / r;
+    if (!(d == d)) d = 1e30; /* NaN in the test image */
+    rel[lit++] = d;
+    sum_rel += d;
+    sum_ref += r;
+    sum_test += t;
+  }
+  qsort(rel, (size_t)lit, sizeof *rel, cmp_double);
+  printf("{\"lit\": %d, \"pixels\": %d, \"mean_rel\": %.6f, \"ratio\": %.6f, "
+         "\"max_rel\": %.6f, \"p90_rel\": %.6f}\n",
+         lit, n, lit ? sum_rel / lit : 0.0, sum_ref > 0 ? sum_test / sum_ref : 0.0,
+         lit ? rel[lit - 1] : 0.0, lit ? rel[(int)(0.9 * (lit - 1))] : 0.0);
+  if (map) {
+    int w = img[0].width, h = img[0].height;
+    int sx = w / 16 > 0 ? w / 16 : 1, sy = h / 12 > 0 ? h / 12 : 1;
+    for (int y = sy / 2; y < h; y += sy) {
+      for (int x = sx / 2; x < w; x += sx) {
+        double r = pixel_mean(&img[0], y * w + x), t = pixel_mean(&img[1], y * w + x);
+        if (r > frac * peak) printf(" %5.2f", t / r);
+        else printf("    . ");
+      }
+      printf("\n");
+    }
+  }
+  free(rel);
+  sh_image_free(&img[0]);
+  sh_image_free(&img[1]);
+  return 0;
+}

@@ -1,0 +1,116 @@
+#include "se_export.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "se_text.h"
+#include "sh_file.h"
+
+void se_note(se_notes *notes, const char *fmt, ...) {
+  char msg[1024];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  for (int i = 0; i < notes->count; i++)
+    if (!strcmp(notes->text[i], msg)) return; /* say each thing once */
+  if (notes->count == notes->cap) {
+    int cap = notes->cap ? 2 * notes->cap : 8;
+    char **t = realloc(notes->text, sizeof *t * (size_t)cap);
+    if (!t) {
+      notes->failed = 1;
+      return;
+    }
+    notes->text = t;
+    notes->cap = cap;
+  }
+  char *copy = malloc(strlen(msg) + 1);
+  if (!copy) {
+    notes->failed = 1;
+    return;
+  }
+  strcpy(copy, msg);
+  notes->text[notes->count++] = copy;
+}
+
+void se_notes_free(se_notes *notes) {
+  for (int i = 0; i < notes->count; i++) free(notes->text[i]);
+  free(notes->text);
+  memset(notes, 0, sizeof *notes);
+}
+
+void se_notes_comment(const se_notes *notes, se_buf *b, const char *prefix) {
+  char line[1100];
+  if (notes->count == 0) {
+    se_buf_printf(b, "%sExact: no feature of the scene needed an approximation.\n",
+                  prefix);
+    return;
+  }
+  se_buf_printf(b, "%sApproximations (%d):\n", prefix, notes->count);
+  for (int i = 0; i < notes->count; i++) {
+    se_comment_text(notes->text[i], line, sizeof line);
+    se_buf_printf(b, "%s- %s\n", prefix, line);
+  }
+}
+
+static se_file *add_file(se_output *out, const char *path) {
+  if (out->count == out->cap) {
+    int cap = out->cap ? 2 * out->cap : 4;
+    se_file *f = realloc(out->files, sizeof *f * (size_t)cap);
+    if (!f) return NULL;
+    out->files = f;
+    out->cap = cap;
+  }
+  se_file *f = &out->files[out->count];
+  memset(f, 0, sizeof *f);
+  f->path = malloc(strlen(path) + 1);
+  if (!f->path) return NULL;
+  strcpy(f->path, path);
+  out->count++;
+  return f;
+}
+
+se_buf *se_output_text(se_output *out, const char *path) {
+  se_file *f = add_file(out, path);
+  return f ? &f->text : NULL;
+}
+
+int se_output_image(se_output *out, const char *path, const sh_image *image) {
+  se_file *f = add_file(out, path);
+  if (!f) return 0;
+  f->image = image;
+  return 1;
+}
+
+sh_status se_output_write(const se_output *out, sh_error *err) {
+  for (int i = 0; i < out->count; i++) {
+    const se_file *f = &out->files[i];
+    sh_status st;
+    if (f->image) {
+      st = sh_image_write(f->path, f->image, 0.0, err);
+    } else if (f->text.failed) {
+      st = sh_error_set(err, SH_ERR_NOMEM, "out of memory while writing '%s'",
+                        f->path);
+    } else {
+      st = sh_file_write_atomic(f->path, f->text.data ? f->text.data : "",
+                                f->text.len, err);
+    }
+    if (st != SH_OK) {
+      for (int k = 0; k < i; k++) unlink(out->files[k].path);
+      return st;
+    }
+  }
+  return SH_OK;
+}
+
+void se_output_free(se_output *out) {
+  for (int i = 0; i < out->count; i++) {
+    free(out->files[i].path);
+    se_buf_free(&out->files[i].text);
+  }
+  free(out->files);
+  memset(out, 0, sizeof *out);
+}

@@ -1,0 +1,78 @@
+/* The exporters' common ground: options, the list of approximations an
+ * export had to make, and the set of files an export produces.
+ *
+ * An export runs in two steps. A target's build function (se_pov_build,
+ * se_blender_build, se_json_build) turns a loaded scene into files held in
+ * memory and records every feature it could not represent exactly as a note;
+ * it writes nothing. The caller then refuses the export (--strict with notes)
+ * or writes the files with se_output_write. So a refused or failed export
+ * leaves no file behind. */
+#ifndef SE_EXPORT_H
+#define SE_EXPORT_H
+
+#include "se_buf.h"
+#include "sh_error.h"
+#include "sh_image.h"
+#include "sh_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum se_quality {
+  SE_QUALITY_DRAFT, /* quick renders for tests and previews */
+  SE_QUALITY_FINAL  /* the settings for a converged comparison */
+} se_quality;
+
+typedef struct se_options {
+  se_quality quality;
+} se_options;
+
+/* Approximations made by an export: one full sentence each, naming the
+ * scene element ("lights[2]", "materials[0] (glass)") and saying what the
+ * target does instead. */
+typedef struct se_notes {
+  int count, cap;
+  char **text; /* owned */
+  int failed;  /* an allocation failed; the list is incomplete */
+} se_notes;
+
+void se_note(se_notes *notes, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+void se_notes_free(se_notes *notes);
+
+/* One file of an export: text, or an image written as 32-bit float EXR. */
+typedef struct se_file {
+  char *path;          /* owned */
+  se_buf text;         /* the contents, when image is NULL */
+  const sh_image *image; /* borrowed from the scene */
+} se_file;
+
+typedef struct se_output {
+  int count, cap;
+  se_file *files; /* written in this order; put the main file last */
+} se_output;
+
+/* Adds a text file and returns its buffer to fill (NULL if out of memory).
+ * `path` is copied. */
+se_buf *se_output_text(se_output *out, const char *path);
+/* Adds an image file; the image must outlive the output. Returns 0 if out
+ * of memory. */
+int se_output_image(se_output *out, const char *path, const sh_image *image);
+/* Writes every file, each to a temporary file renamed into place. If any
+ * write fails, the files already written by this call are removed and the
+ * error returned: an export is written whole or not at all. */
+sh_status se_output_write(const se_output *out, sh_error *err);
+void se_output_free(se_output *out);
+
+/* Appends the notes as comment lines: each line starts with `prefix` (such
+ * as "// " or "# "), and the text is sanitised for a comment. */
+void se_notes_comment(const se_notes *notes, se_buf *b, const char *prefix);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,561 @@
+#include "se_pov.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "se_geom.h"
+#include "se_phase.h"
+#include "se_text.h"
+#include "sh_tessellate.h"
+
+/* The state of one export. */
+typedef struct pov {
+  const sh_scene *scene;
+  const se_options *opt;
+  se_notes *notes;
+  se_buf *b;
+  double scale;     /* POV-Ray units per scene unit */
+  double pov_radius; /* the bounding sphere's radius in POV-Ray units */
+  sh_vec3 center;   /* the bounding sphere, in scene units */
+  double radius;
+  sh_vec3 sigma_t;  /* per POV-Ray unit */
+} pov;
+
+/* Numbers: 10 significant digits, enough for half-float output. */
+static void num(se_buf *b, double v) { se_buf_printf(b, "%.10g", v == 0 ? 0.0 : v); }
+
+/* A scene-space point as a POV-Ray vector: scaled, z negated. */
+static void point(pov *p, sh_vec3 v) {
+  se_buf_puts(p->b, "<");
+  num(p->b, v.x * p->scale);
+  se_buf_puts(p->b, ", ");
+  num(p->b, v.y * p->scale);
+  se_buf_puts(p->b, ", ");
+  num(p->b, -v.z * p->scale);
+  se_buf_puts(p->b, ">");
+}
+
+/* A direction: z negated, not scaled. */
+static void direction(pov *p, sh_vec3 v) {
+  se_buf_puts(p->b, "<");
+  num(p->b, v.x);
+  se_buf_puts(p->b, ", ");
+  num(p->b, v.y);
+  se_buf_puts(p->b, ", ");
+  num(p->b, -v.z);
+  se_buf_puts(p->b, ">");
+}
+
+static void colour(se_buf *b, sh_vec3 c) {
+  se_buf_puts(b, "rgb <");
+  num(b, c.x);
+  se_buf_puts(b, ", ");
+  num(b, c.y);
+  se_buf_puts(b, ", ");
+  num(b, c.z);
+  se_buf_puts(b, ">");
+}
+
+/* POV-Ray's `matrix` for object-to-world m followed by the scale and the
+ * z flip: its rows are the images of x, y, z and the translation, as POV-Ray
+ * applies matrices to row vectors. */
+static void matrix(pov *p, const sh_mat4 *m) {
+  double f[3] = {p->scale, p->scale, -p->scale};
+  se_buf_puts(p->b, "matrix <");
+  for (int col = 0; col < 4; col++)
+    for (int row = 0; row < 3; row++) {
+      num(p->b, f[row] * m->m[row][col]);
+      if (col < 3 || row < 2) se_buf_puts(p->b, ", ");
+    }
+  se_buf_puts(p->b, ">");
+}
+
+/* The matrix of a card: the unit square of the xy plane to the card, for
+ * POV-Ray's image_map, which covers that square. */
+static void card_matrix(pov *p, const se_card *c) {
+  sh_mat4 m = sh_mat4_identity();
+  sh_vec3 cols[4] = {c->ex, c->ey, c->normal, c->origin};
+  for (int k = 0; k < 4; k++) {
+    m.m[0][k] = cols[k].x;
+    m.m[1][k] = cols[k].y;
+    m.m[2][k] = cols[k].z;
+  }
+  matrix(p, &m);
+}
+
+static int is_grey(sh_vec3 c) { return c.x == c.y && c.y == c.z; }
+
+static void header(pov *p, const char *name) {
+  char file[200];
+  se_comment_text(se_base_name(p->scene->file ? p->scene->file : "scene"),
+                  file, sizeof file);
+  se_buf *b = p->b;
+  se_buf_printf(b, "// POV-Ray 3.7 scene exported by scene_export from %s.\n", file);
+  se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
+                name, name);
+  se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel centre.\n");
+  se_buf_puts(b, "// Coordinates: the scene's, with z negated (POV-Ray is left-handed) and\n");
+  se_buf_printf(b, "// lengths multiplied by %g (coefficients per unit length divided by it,\n",
+                p->scale);
+  se_buf_puts(b, "// intensities multiplied by its square), so POV-Ray's fixed tolerances of\n");
+  se_buf_puts(b, "// 1e-3 units are negligible.\n");
+  se_notes_comment(p->notes, b, "// ");
+  se_buf_puts(b, "\n#version 3.7;\n\n");
+}
+
+static int trace_levels(const pov *p) {
+  /* POV-Ray counts each crossing of the medium's box as a trace level:
+   * allow entering and leaving it on top of the scene's recursion. */
+  return p->scene->render.max_depth + 1 + (p->scene->medium.present ? 2 : 0);
+}
+
+static void globals(pov *p) {
+  const sh_scene *s = p->scene;
+  se_buf *b = p->b;
+  se_buf_printf(b,
+                "global_settings {\n  assumed_gamma 1.0\n  max_trace_level %d\n"
+                "  adc_bailout 1e-10\n  ambient_light rgb <1, 1, 1>\n}\n\n",
+                trace_levels(p));
+  se_buf_puts(b, "background { ");
+  colour(b, s->background);
+  se_buf_puts(b, " }\n\n");
+  double aspect = (double)s->camera.width / s->camera.height;
+  double hfov = 2.0 * atan(tan(0.5 * s->camera.fov_y_deg * SH_PI / 180.0) * aspect) *
+                180.0 / SH_PI;
+  se_buf_puts(b, "// The pinhole camera; `angle` is POV-Ray's horizontal field of view.\n");
+  se_buf_puts(b, "camera {\n  perspective\n  location ");
+  point(p, s->camera.position);
+  se_buf_printf(b, "\n  right x * %.17g\n  up y\n  sky ", aspect);
+  direction(p, s->camera.up);
+  se_buf_puts(b, "\n  angle ");
+  num(b, hfov);
+  se_buf_puts(b, "\n  look_at ");
+  point(p, s->camera.look_at);
+  se_buf_puts(b, "\n}\n\n");
+}
+
+/* The medium's box in scene units, enlarged by a hair. */
+static void medium_box(const pov *p, sh_vec3 *lo, sh_vec3 *hi) {
+  double eps = 1e-4 * p->radius;
+  *lo = sh_sub(p->scene->medium.bmin, sh_v3s(eps));
+  *hi = sh_add(p->scene->medium.bmax, sh_v3s(eps));
+}
+
+/* The surface of a helper object: unlit, of the given pigment; `hidden`
+ * keeps camera and reflected rays from seeing it at all. The medium's box
+ * must not be hidden: a ray enters its interior (and its media) only by
+ * crossing its surface. */
+static void helper_texture(se_buf *b, const char *pigment, int hidden) {
+  se_buf_printf(b, "  pigment { %s }\n  finish { ambient 0 diffuse 0 emission 0 }\n"
+                   "  hollow%s\n", pigment, hidden ? " no_image no_reflection" : "");
+}
+
+static void spot_or_point(pov *p, int i) {
+  const sh_scene *s = p->scene;
+  const sh_light *l = &s->lights[i];
+  se_buf *b = p->b;
+  double f = 1e-4 * p->pov_radius;     /* fade distance */
+  double r = 1e-3 * p->pov_radius;     /* the sphere around a light in the medium */
+  sh_vec3 lo, hi;
+  int inside = 0;
+  if (s->medium.present) {
+    medium_box(p, &lo, &hi);
+    inside = se_in_box(l->position, lo, hi);
+  }
+  sh_vec3 c = sh_scale(l->intensity, p->scale * p->scale / (2.0 * f * f));
+  if (inside)
+    c = sh_mul(c, sh_vexp(sh_scale(p->sigma_t, -r)));
+  se_buf_printf(b, "// lights[%d]: %s light, 1/r^2 through fade_power 2 with fade_distance %g.\n",
+                i, l->type == SH_LIGHT_SPOT ? "spot" : "point", f);
+  se_buf_puts(b, "light_source {\n  ");
+  point(p, l->position);
+  se_buf_puts(b, "\n  color ");
+  colour(b, c);
+  if (l->type == SH_LIGHT_SPOT) {
+    double outer = l->outer_deg, inner = l->inner_deg;
+    if (outer >= 90.0) {
+      se_note(p->notes,
+              "lights[%d]: a spot cone of half-angle %g degrees reaches behind the "
+              "light, where POV-Ray spotlights give no light; the cone is cut at "
+              "89.9 degrees.",
+              i, outer);
+      outer = fmin(outer, 89.9);
+      inner = fmin(inner, outer);
+    }
+    se_buf_puts(b, "\n  spotlight\n  point_at ");
+    point(p, sh_madd(l->position, l->direction, p->radius));
+    se_buf_printf(b, "\n  radius %.17g\n  falloff %.17g\n  tightness %.17g", inner,
+                  outer, l->exponent);
+  }
+  se_buf_puts(b, "\n  fade_distance ");
+  num(b, f);
+  se_buf_puts(b, "\n  fade_power 2\n  media_interaction on\n  media_attenuation on\n}\n");
+  if (inside) {
+    se_buf_puts(b, "// An invisible sphere around the light, so that shadow rays cross a surface\n"
+                   "// just before reaching it and POV-Ray attenuates them by the medium all the way\n"
+                   "// but for the radius, which the colour above makes up for.\n");
+    se_buf_puts(b, "sphere {\n  ");
+    point(p, l->position);
+    se_buf_puts(b, ", ");
+    num(b, r);
+    se_buf_puts(b, "\n");
+    helper_texture(b, "rgbt <1, 1, 1, 1>", 1);
+    se_buf_puts(b, "}\n");
+  }
+  if (l->type == SH_LIGHT_SPOT && l->has_map) {
+    se_card card = se_spot_card(l, 2e-3 * p->pov_radius / p->scale);
+    se_buf_printf(b, "// The light map of lights[%d] as a filter card in front of the light.\n", i);
+    se_buf_puts(b, "polygon {\n  5, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0>\n");
+    se_buf_printf(b, "  pigment { image_map { exr \"%s\" interpolate 2 filter all 1 } }\n",
+                  "@MAP@");
+    se_buf_puts(b, "  finish { ambient 0 diffuse 0 emission 0 }\n  hollow no_image no_reflection\n  ");
+    card_matrix(p, &card);
+    se_buf_puts(b, "\n}\n");
+  }
+  se_buf_puts(b, "\n");
+}
+
+static void directional(pov *p, int i) {
+  const sh_light *l = &p->scene->lights[i];
+  se_buf *b = p->b;
+  double dist = 4.0 * p->radius;
+  se_window w;
+  if (l->has_map) {
+    w = se_window_card(l, p->center, p->radius);
+    dist = w.light_distance;
+  }
+  se_buf_printf(b, "// lights[%d]: directional light, a parallel light beyond the scene.\n", i);
+  se_buf_puts(b, "light_source {\n  ");
+  point(p, sh_madd(p->center, l->direction, -dist));
+  se_buf_puts(b, "\n  color ");
+  colour(b, l->irradiance);
+  se_buf_puts(b, "\n  parallel\n  point_at ");
+  point(p, p->center);
+  se_buf_puts(b, "\n  media_interaction on\n  media_attenuation on\n}\n");
+  if (l->has_map) {
+    se_buf_printf(b, "// The window of lights[%d] as a filter card upstream of the scene, in an\n"
+                     "// opaque wall that blocks the light outside the window.\n", i);
+    se_buf_puts(b, "polygon {\n  5, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0>\n");
+    se_buf_printf(b, "  pigment { image_map { exr \"%s\" interpolate 2 filter all 1 } }\n",
+                  "@MAP@");
+    se_buf_puts(b, "  finish { ambient 0 diffuse 0 emission 0 }\n  hollow no_image no_reflection\n  ");
+    card_matrix(p, &w.card);
+    se_buf_puts(b, "\n}\npolygon {\n  10, ");
+    double x0 = w.wall_lo_x, y0 = w.wall_lo_y, x1 = w.wall_hi_x, y1 = w.wall_hi_y;
+    se_buf_printf(b, "<%.10g, %.10g>, <%.10g, %.10g>, <%.10g, %.10g>, <%.10g, %.10g>, <%.10g, %.10g>,\n",
+                  x0, y0, x1, y0, x1, y1, x0, y1, x0, y0);
+    se_buf_puts(b, "  <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0>\n");
+    helper_texture(b, "rgb <0, 0, 0>", 1);
+    se_buf_puts(b, "  ");
+    card_matrix(p, &w.card);
+    se_buf_puts(b, "\n}\n");
+  }
+  se_buf_puts(b, "\n");
+}
+
+/* Replaces the i-th "@MAP@" placeholder written for light i: lights are
+ * written in order, so the placeholders are filled as they come. */
+static void fill_map_names(se_buf *b, const char *name, const sh_scene *s) {
+  for (int i = 0; i < s->nlights; i++) {
+    if (!s->lights[i].has_map) continue;
+    char *at = b->data ? strstr(b->data, "\"@MAP@\"") : NULL;
+    if (!at) return;
+    char file[600];
+    snprintf(file, sizeof file, "%s_map%d.exr", name, i);
+    se_buf lit = {0};
+    se_pov_string(&lit, file);
+    se_buf rest = {0};
+    se_buf_puts(&rest, at + 7);
+    b->len = (size_t)(at - b->data);
+    b->data[b->len] = '\0';
+    if (lit.data) se_buf_puts(b, lit.data);
+    if (rest.data) se_buf_puts(b, rest.data);
+    b->failed |= lit.failed | rest.failed;
+    se_buf_free(&lit);
+    se_buf_free(&rest);
+  }
+}
+
+static void material(pov *p, int i) {
+  const sh_material *m = &p->scene->materials[i];
+  se_buf *b = p->b;
+  char name[80];
+  se_comment_text(m->name, name, sizeof name);
+  se_buf_printf(b, "// materials[%d]: %s\n", i, name);
+  se_buf_printf(b, "#macro SE_Material%d()\n", i);
+  sh_vec3 kt = m->transmit;
+  int transparent = !sh_is_black(kt);
+  /* The lit layer's pigment transmit T: POV-Ray 3.7 scales ambient,
+   * emission and diffuse by the opacity 1 - filter - transmit, which the
+   * colours below undo. A grey k_t < 1 is the lit layer's own transmit; any
+   * other k_t is T = 0.5 here and a pure filter layer of colour k_t / T
+   * underneath, so that the transmitted light is T * k_t / T = k_t. */
+  double T = 0.0;
+  int filter_layer = 0;
+  if (transparent) {
+    if (is_grey(kt) && kt.x < 1.0) T = kt.x;
+    else {
+      T = 0.5;
+      filter_layer = 1;
+    }
+  }
+  double att = 1.0 - T;
+  if (filter_layer) {
+    se_buf_puts(b, "  texture { pigment { rgbf <");
+    num(b, kt.x / T);
+    se_buf_puts(b, ", ");
+    num(b, kt.y / T);
+    se_buf_puts(b, ", ");
+    num(b, kt.z / T);
+    se_buf_puts(b, ", 1> } finish { ambient 0 diffuse 0 emission 0 } }\n");
+  }
+  /* Pigment: diffuse / pi (POV-Ray's diffuse has no 1/pi), divided by the
+   * opacity. Ambient and emission are multiplied by the pigment, so a
+   * channel with emission but no diffuse gets a pigment of 1e-6. */
+  sh_vec3 pig = sh_scale(m->diffuse, SH_INV_PI / att);
+  sh_vec3 emis = sh_v3s(0.0);
+  for (int k = 0; k < 3; k++) {
+    double e = sh_vget(m->emission, k);
+    double *pc = k == 0 ? &pig.x : k == 1 ? &pig.y : &pig.z;
+    double *ec = k == 0 ? &emis.x : k == 1 ? &emis.y : &emis.z;
+    if (e > 0) {
+      if (*pc <= 0) *pc = 1e-6;
+      *ec = e / (*pc * att);
+    }
+  }
+  se_buf_puts(b, "  texture {\n    pigment { rgbt <");
+  num(b, pig.x);
+  se_buf_puts(b, ", ");
+  num(b, pig.y);
+  se_buf_puts(b, ", ");
+  num(b, pig.z);
+  se_buf_puts(b, ", ");
+  num(b, T);
+  se_buf_puts(b, "> }\n    finish {\n      ambient ");
+  colour(b, sh_scale(p->scene->ambient, SH_PI));
+  se_buf_puts(b, "\n      emission ");
+  colour(b, emis);
+  se_buf_puts(b, "\n      diffuse 1 brilliance 1\n");
+  if (!sh_is_black(m->specular)) {
+    double s = m->specular.x;
+    if (!is_grey(m->specular)) {
+      s = (m->specular.x + m->specular.y + m->specular.z) / 3.0;
+      se_note(p->notes,
+              "materials[%d] (%s): POV-Ray's phong highlight takes the light's "
+              "colour only; the coloured specular is replaced by its grey mean %g.",
+              i, name, s);
+    }
+    se_buf_puts(b, "      phong ");
+    num(b, s);
+    se_buf_puts(b, " phong_size ");
+    num(b, m->shininess);
+    se_buf_puts(b, "\n");
+  }
+  if (!sh_is_black(m->reflect)) {
+    se_buf_puts(b, "      reflection { ");
+    colour(b, m->reflect);
+    se_buf_puts(b, " }\n");
+  }
+  se_buf_puts(b, "    }\n  }\n");
+  if (transparent) {
+    se_buf_puts(b, "  interior { ior ");
+    num(b, m->ior);
+    se_buf_puts(b, " }\n");
+    if (m->ior != 1.0)
+      se_note(p->notes,
+              "materials[%d] (%s): at total internal reflection POV-Ray sends the "
+              "whole ray along the mirror direction, where the reference weights "
+              "it by transmit.",
+              i, name);
+  }
+  se_buf_puts(b, "#end\n\n");
+}
+
+static void mesh2(pov *p, const sh_mesh *m) {
+  se_buf *b = p->b;
+  se_buf_printf(b, "mesh2 {\n  vertex_vectors { %d", m->nverts);
+  for (int v = 0; v < m->nverts; v++) {
+    const float *q = m->positions + 3 * v;
+    se_buf_printf(b, ",\n    <%.9g, %.9g, %.9g>", q[0], q[1], q[2]);
+  }
+  se_buf_printf(b, "\n  }\n  face_indices { %d", m->ntris);
+  for (int t = 0; t < m->ntris; t++) {
+    const unsigned *q = m->indices + 3 * t;
+    se_buf_printf(b, ",\n    <%u, %u, %u>", q[0], q[1], q[2]);
+  }
+  se_buf_puts(b, "\n  }\n");
+}
+
+static sh_status shape(pov *p, int i, sh_error *err) {
+  const sh_shape *s = &p->scene->shapes[i];
+  se_buf *b = p->b;
+  static const char *names[] = {"mesh", "sphere", "box", "cylinder", "quad",
+                                "heightfield"};
+  se_buf_printf(b, "// shapes[%d]: %s\n", i, names[s->type]);
+  switch (s->type) {
+  case SH_SHAPE_SPHERE:
+    se_buf_printf(b, "sphere {\n  <%.17g, %.17g, %.17g>, %.17g\n", s->center.x,
+                  s->center.y, s->center.z, s->radius);
+    break;
+  case SH_SHAPE_BOX:
+    se_buf_printf(b, "box {\n  <%.17g, %.17g, %.17g>, <%.17g, %.17g, %.17g>\n",
+                  s->bmin.x, s->bmin.y, s->bmin.z, s->bmax.x, s->bmax.y,
+                  s->bmax.z);
+    break;
+  case SH_SHAPE_CYLINDER:
+    se_buf_printf(b, "cylinder {\n  <%.17g, %.17g, %.17g>, <%.17g, %.17g, %.17g>, %.17g%s\n",
+                  s->base.x, s->base.y, s->base.z, s->top.x, s->top.y, s->top.z,
+                  s->radius, s->caps ? "" : " open");
+    break;
+  default: {
+    sh_mesh m = {0};
+    sh_status st = sh_mesh_tessellate(s, 1.0, &m, err);
+    if (st != SH_OK) return st;
+    mesh2(p, &m);
+    sh_mesh_free(&m);
+    break;
+  }
+  }
+  se_buf_printf(b, "  SE_Material%d()\n  hollow\n  ", s->material);
+  matrix(p, &s->xform);
+  se_buf_puts(b, "\n}\n\n");
+  return SH_OK;
+}
+
+static void medium(pov *p) {
+  const sh_medium *m = &p->scene->medium;
+  se_buf *b = p->b;
+  se_phase_pov pp = se_phase_to_pov(&m->phase);
+  int intervals = p->opt->quality == SE_QUALITY_FINAL ? 1000 : 200;
+  sh_vec3 lo, hi;
+  medium_box(p, &lo, &hi);
+  sh_vec3 ss = sh_scale(m->sigma_s, 1.0 / p->scale);
+  sh_vec3 sa = sh_scale(m->sigma_a, 1.0 / p->scale);
+  se_buf_puts(b, "// The medium: its box (enlarged by a hair), invisible and hollow, with\n"
+                 "// interior media. Method 2 with jitter 0 and one sample per interval is a\n"
+                 "// midpoint rule with exact transmittance (method 3 is biased).\n");
+  se_buf_printf(b, "// Phase: %s; POV-Ray's k has sphere mean %.9g, so the scattering colour\n"
+                   "// is sigma_s / (4 pi mean) and `extinction` 4 pi mean.\n",
+                pp.comment, pp.mean);
+  se_buf_puts(b, "box {\n  ");
+  point(p, sh_v3(lo.x, lo.y, hi.z));
+  se_buf_puts(b, ", ");
+  point(p, sh_v3(hi.x, hi.y, lo.z));
+  se_buf_puts(b, "\n");
+  helper_texture(b, "rgbt <1, 1, 1, 1>", 0);
+  se_buf_printf(b, "  interior {\n    media {\n      method 2\n      intervals %d\n"
+                   "      samples 1, 1\n      jitter 0\n", intervals);
+  if (!sh_is_black(ss)) {
+    double k = 4.0 * SH_PI * pp.mean;
+    se_buf_printf(b, "      scattering {\n        %d, ", pp.type);
+    colour(b, sh_scale(ss, 1.0 / k));
+    se_buf_puts(b, "\n        extinction ");
+    num(b, k);
+    if (pp.type == 5) {
+      se_buf_puts(b, "\n        eccentricity ");
+      num(b, pp.g);
+    }
+    se_buf_puts(b, "\n      }\n");
+  }
+  if (!sh_is_black(sa)) {
+    se_buf_puts(b, "      absorption ");
+    colour(b, sa);
+    se_buf_puts(b, "\n");
+  }
+  se_buf_puts(b, "    }\n  }\n}\n\n");
+}
+
+static void ini(se_buf *b, const char *name, const sh_scene *s) {
+  se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
+  se_buf_printf(b, "%s.ini` in this directory.\n", name);
+  se_buf_printf(b, "Input_File_Name=%s.pov\n", name);
+  se_buf_printf(b, "Output_File_Name=%s.exr\n", name);
+  se_buf_puts(b, "; Linear radiance, OpenEXR (POV-Ray writes half floats).\n");
+  se_buf_puts(b, "Output_File_Type=E\nOutput_Alpha=Off\n");
+  se_buf_printf(b, "Width=%d\nHeight=%d\n", s->camera.width, s->camera.height);
+  se_buf_puts(b, "; One ray through each pixel centre.\n");
+  se_buf_puts(b, "Antialias=Off\nJitter=Off\nQuality=9\n");
+  se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
+}
+
+sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
+                       const char *pov_path, se_output *out, se_notes *notes,
+                       sh_error *err) {
+  size_t n = strlen(pov_path);
+  if (n < 5 || strcmp(pov_path + n - 4, ".pov") != 0)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the POV-Ray output '%s' must end in .pov", pov_path);
+  const char *base = se_base_name(pov_path);
+  char name[512];
+  if (strlen(base) - 4 >= sizeof name)
+    return sh_error_set(err, SH_ERR_ARG, "the output file name is too long");
+  memcpy(name, base, strlen(base) - 4);
+  name[strlen(base) - 4] = '\0';
+  if (!se_is_plain_file_name(name))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the POV-Ray output name '%s' must consist of letters, "
+                        "digits and '._+-' and not start with '.' or '-' "
+                        "(it is written unquoted into the .ini file)",
+                        name);
+  pov p;
+  memset(&p, 0, sizeof p);
+  p.scene = scene;
+  p.opt = opt;
+  p.notes = notes;
+  se_bounding_sphere(scene, &p.center, &p.radius);
+  p.scale = pow(10.0, round(log10(300.0 / p.radius)));
+  p.pov_radius = p.radius * p.scale;
+  p.sigma_t = scene->medium.present ? sh_scale(scene->medium.sigma_t, 1.0 / p.scale)
+                                    : sh_v3s(0.0);
+
+  /* The body first, so that the header can list every approximation. */
+  se_buf body = {0};
+  p.b = &body;
+  globals(&p);
+  for (int i = 0; i < scene->nlights; i++) {
+    if (scene->lights[i].type == SH_LIGHT_DIRECTIONAL) directional(&p, i);
+    else spot_or_point(&p, i);
+  }
+  fill_map_names(&body, name, scene);
+  for (int i = 0; i < scene->nmaterials; i++) material(&p, i);
+  if (scene->medium.present) medium(&p);
+  for (int i = 0; i < scene->nshapes; i++) {
+    sh_status st = shape(&p, i, err);
+    if (st != SH_OK) {
+      se_buf_free(&body);
+      return st;
+    }
+  }
+  if (scene->nlights == 0)
+    se_note(notes, "the scene has no light; the image is black but for emission "
+                   "and ambient.");
+
+  /* Files: the light maps, the .pov, then the .ini that names them. */
+  size_t dir_len = (size_t)(base - pov_path);
+  for (int i = 0; i < scene->nlights; i++) {
+    if (!scene->lights[i].has_map) continue;
+    char path[1200];
+    snprintf(path, sizeof path, "%.*s%s_map%d.exr", (int)dir_len, pov_path, name, i);
+    if (!se_output_image(out, path, &scene->lights[i].map)) {
+      se_buf_free(&body);
+      return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    }
+  }
+  se_buf *povb = se_output_text(out, pov_path);
+  char *ini_path = se_replace_extension(pov_path, ".ini");
+  se_buf *inib = ini_path ? se_output_text(out, ini_path) : NULL;
+  free(ini_path);
+  if (!povb || !inib) {
+    se_buf_free(&body);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  p.b = povb;
+  header(&p, name);
+  if (body.data) se_buf_puts(povb, body.data);
+  povb->failed |= body.failed;
+  se_buf_free(&body);
+  ini(inib, name, scene);
+  return SH_OK;
+}

@@ -1,0 +1,57 @@
+#include "se_text.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static int plain_char(int c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+         (c >= '0' && c <= '9') || c == '_' || c == '.' || c == '+' ||
+         c == '-';
+}
+
+void se_comment_text(const char *in, char *out, size_t size) {
+  size_t n = 0, len = strlen(in);
+  for (size_t i = 0; i < len && n + 1 < size; i++) {
+    int c = (unsigned char)in[i];
+    out[n++] = (char)(plain_char(c) || c == ' ' ? c : '_');
+  }
+  out[n] = '\0';
+  if (len > n && size >= 4) memcpy(out + size - 4, "...", 4);
+}
+
+void se_pov_string(se_buf *b, const char *in) {
+  se_buf_puts(b, "\"");
+  for (const unsigned char *p = (const unsigned char *)in; *p; p++) {
+    if (*p == '\\') se_buf_puts(b, "\\\\");
+    else if (*p == '"') se_buf_puts(b, "\\\"");
+    else if (*p == '\n') se_buf_puts(b, "\\n");
+    else if (*p == '\t') se_buf_puts(b, "\\t");
+    else if (*p < 0x20 || *p >= 0x7f) se_buf_puts(b, "_");
+    else se_buf_append(b, (const char *)p, 1);
+  }
+  se_buf_puts(b, "\"");
+}
+
+int se_is_plain_file_name(const char *name) {
+  if (!name[0] || name[0] == '-' || name[0] == '.') return 0;
+  for (const char *p = name; *p; p++)
+    if (!plain_char((unsigned char)*p)) return 0;
+  return 1;
+}
+
+const char *se_base_name(const char *path) {
+  const char *slash = strrchr(path, '/');
+  return slash ? slash + 1 : path;
+}
+
+char *se_replace_extension(const char *path, const char *suffix) {
+  const char *base = se_base_name(path);
+  const char *dot = strrchr(base, '.');
+  size_t keep = dot && dot != base ? (size_t)(dot - path) : strlen(path);
+  size_t n = keep + strlen(suffix) + 1;
+  char *s = malloc(n);
+  if (!s) return NULL;
+  memcpy(s, path, keep);
+  strcpy(s + keep, suffix);
+  return s;
+}

@@ -1,0 +1,45 @@
+/* Text that comes from users (material names, file paths, output names)
+ * and must not break, or run code in, the files the exporters write.
+ *
+ * The exporters avoid user strings wherever they can: POV-Ray and Blender
+ * outputs refer to files the exporter itself names, and scene names appear
+ * only in comments, sanitised by se_comment_text. */
+#ifndef SE_TEXT_H
+#define SE_TEXT_H
+
+#include <stddef.h>
+
+#include "se_buf.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Writes into out (room for size bytes, size >= 4) a copy of `in` that is
+ * safe inside a one-line comment of any of the target languages: letters,
+ * digits, space and "_.+-" are kept, every other byte becomes '_', and the
+ * result is cut to size - 1 bytes with "..." marking a cut. */
+void se_comment_text(const char *in, char *out, size_t size);
+
+/* Appends `in` as a POV-Ray string literal, with its quotes: backslash and
+ * double quote are escaped, tab and newline written as \t and \n, and any
+ * other control or non-ASCII byte replaced by '_' (POV-Ray 3.7 reads
+ * strings as ASCII). */
+void se_pov_string(se_buf *b, const char *in);
+
+/* True if `name` (a file name without directories) is non-empty, consists
+ * of letters, digits and "._+-" only, and does not start with '-' or '.':
+ * the names POV-Ray's .ini files and command line take without quoting. */
+int se_is_plain_file_name(const char *name);
+
+/* The last path component of `path` (a pointer into it). */
+const char *se_base_name(const char *path);
+
+/* A new string: `path` without its extension (after the last dot of the
+ * last component), plus `suffix`. NULL if out of memory. */
+char *se_replace_extension(const char *path, const char *suffix);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
