@@ -80,7 +80,7 @@ static run render(const sh_scene *s, const sh_rt *rt, int method, double a,
   lmm *L = NULL;
   lmm_area *A = NULL;
   if (method == 1) {
-    lmm_options lo = {a, b, SH_SCHEME_REFRACT_TRACE, 0, 0, 1};
+    lmm_options lo = {a, b, SH_SCHEME_REFRACT_TRACE, 0, 0, 1, 0};
     lmm_create(s, rt, &lo, opt.threads, &L, NULL);
     opt.hook = lmm_hook(L);
   } else if (method == 2) {
@@ -258,7 +258,7 @@ static void ceiling(int size) {
     opt.max_depth = 0;
     lmm *L = NULL;
     if (method) {
-      lmm_options lo = {0.04, 2.0, SH_SCHEME_REFRACT_TRACE, 0, 0, 1};
+      lmm_options lo = {0.04, 2.0, SH_SCHEME_REFRACT_TRACE, 0, 0, 1, 0};
       lmm_create(s, rt, &lo, 1, &L, NULL);
       opt.hook = lmm_hook(L);
     }

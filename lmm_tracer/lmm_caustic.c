@@ -11,6 +11,8 @@
 typedef struct entry {
   uint64_t key; /* 0: empty */
   float rgb[3];
+  /* The paths' last surface points P_j, summed with their weights. */
+  float pj[3], wsum;
 } entry;
 
 struct lmm_caustics {
@@ -56,7 +58,7 @@ static int grow(lmm_caustics *c) {
   return 1;
 }
 
-static int credit(lmm_caustics *c, uint64_t key, sh_vec3 w) {
+static int credit(lmm_caustics *c, uint64_t key, sh_vec3 w, sh_vec3 pj) {
   if ((c->count + 1) * 10 > (c->mask + 1) * 7 && !grow(c)) return 0;
   entry *e = find(c, key);
   if (!e->key) {
@@ -66,6 +68,11 @@ static int credit(lmm_caustics *c, uint64_t key, sh_vec3 w) {
   e->rgb[0] += (float)w.x;
   e->rgb[1] += (float)w.y;
   e->rgb[2] += (float)w.z;
+  double lum = (w.x + w.y + w.z) / 3.0;
+  e->pj[0] += (float)(lum * pj.x);
+  e->pj[1] += (float)(lum * pj.y);
+  e->pj[2] += (float)(lum * pj.z);
+  e->wsum += (float)lum;
   return 1;
 }
 
@@ -110,7 +117,7 @@ static int deposit(tracer *tr, sh_vec3 a, sh_vec3 d, double len, sh_vec3 w) {
         sh_vec3 r = sh_sub(x, tr->light_pos);
         scale *= sh_dot(r, r);
       }
-      if (!credit(tr->c, key, sh_scale(w, scale))) return 0;
+      if (!credit(tr->c, key, sh_scale(w, scale), a)) return 0;
     }
     memcpy(prev, cur, sizeof cur);
     nprev = ncur;
@@ -255,8 +262,15 @@ void lmm_caustics_free(lmm_caustics *c) {
 }
 
 sh_vec3 lmm_caustics_at(const lmm_caustics *c, int i, int j, int k, int light) {
+  return lmm_caustics_paths(c, i, j, k, light, NULL);
+}
+
+sh_vec3 lmm_caustics_paths(const lmm_caustics *c, int i, int j, int k,
+                           int light, sh_vec3 *pj) {
   const entry *e = find(c, key_of(c, i, j, k, light));
   if (!e->key) return sh_v3s(0.0);
+  if (pj && e->wsum > 0)
+    *pj = sh_scale(sh_v3(e->pj[0], e->pj[1], e->pj[2]), 1.0 / e->wsum);
   return sh_v3(e->rgb[0], e->rgb[1], e->rgb[2]);
 }
 

@@ -31,6 +31,15 @@ void lmm_caustics_free(lmm_caustics *c);
 /* The refracted visibility of light `light` at grid point (i, j, k). */
 sh_vec3 lmm_caustics_at(const lmm_caustics *c, int i, int j, int k, int light);
 
+/* As lmm_caustics_at, and writes to *pj (if not NULL and the point was
+ * credited) the weighted mean of the paths' last surface points P_j: where
+ * the refracted light last left a surface before reaching the point. The
+ * refined variant of section 5 keeps one such point per mesh point and
+ * light (the paths through a mesh point from one lens leave it close
+ * together), instead of every path's. */
+sh_vec3 lmm_caustics_paths(const lmm_caustics *c, int i, int j, int k,
+                           int light, sh_vec3 *pj);
+
 /* The number of grid points credited, for statistics. */
 int64_t lmm_caustics_points(const lmm_caustics *c);
 

@@ -24,6 +24,7 @@ struct lmm_mesh {
   const sh_scene *scene;
   const sh_rt *rt;
   const lmm_caustics *caustics;
+  int add_paths;
   double h;
   sh_vec3 origin;
   int n[3];
@@ -104,9 +105,11 @@ void lmm_mesh_free(lmm_mesh *m) {
   free(m);
 }
 
-void lmm_mesh_set_caustics(lmm_mesh *m, const lmm_caustics *caustics) {
+void lmm_mesh_set_caustics(lmm_mesh *m, const lmm_caustics *caustics,
+                           int add_paths) {
   m->caustics = caustics;
-  if (caustics) m->bits = 0;
+  m->add_paths = add_paths;
+  if (caustics && add_paths) m->bits = 0;
   set_layout(m);
 }
 
@@ -149,8 +152,9 @@ static void compute(const lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
       /* Formula 6: the straight path counts only if nothing at all is on
        * it; refracted paths add their transmittance. */
       int blocked = sh_rt_occluded(m->rt, x, wi, tmax, m->classes, c);
-      vis[l] = sh_add(sh_v3s(blocked ? 0.0 : 1.0),
-                      lmm_caustics_at(m->caustics, i, j, k, l));
+      vis[l] = sh_v3s(blocked ? 0.0 : 1.0);
+      if (m->add_paths)
+        vis[l] = sh_add(vis[l], lmm_caustics_at(m->caustics, i, j, k, l));
     } else {
       vis[l] = sh_rt_visibility_of(m->rt, x, wi, tmax, m->classes, c);
     }

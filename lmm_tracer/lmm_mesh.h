@@ -36,10 +36,13 @@ sh_status lmm_mesh_create(const sh_scene *scene, const sh_rt *rt, double h,
                           int capacity_log2, lmm_mesh **out, sh_error *err);
 void lmm_mesh_free(lmm_mesh *mesh);
 
-/* Adds refracted paths (the refract-both scheme), which also switches the
- * direct term to "no surface at all on the segment". Call before the first
- * lmm_mesh_values; `caustics` must outlive the mesh. */
-void lmm_mesh_set_caustics(lmm_mesh *mesh, const lmm_caustics *caustics);
+/* Switches to the refract-both scheme: the direct term becomes "no surface
+ * at all on the segment", and with `add_paths` the refracted paths of
+ * `caustics` are added to it (formula 6); without, the values hold the
+ * direct term only (the refined variant reads the paths itself). Call
+ * before the first lmm_mesh_values; `caustics` must outlive the mesh. */
+void lmm_mesh_set_caustics(lmm_mesh *mesh, const lmm_caustics *caustics,
+                           int add_paths);
 
 /* The grid: its first point, and its number of points along each axis. */
 void lmm_mesh_grid(const lmm_mesh *mesh, sh_vec3 *origin, int n[3]);

@@ -30,7 +30,7 @@ struct lmm {
   sh_shadow_hook hook;
   scratch *scratch;
   int threads;
-  int semi, hard;
+  int semi, hard, refined;
   double build_seconds;
 };
 
@@ -101,8 +101,21 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
       vxp = sh_v3s(sc->blocked[q] ? 0.0 : 1.0);
     if (sh_is_black(vxp)) continue;
     m++;
-    lmm_mesh_values(L->mesh, sc->cand[3 * q], sc->cand[3 * q + 1],
-                    sc->cand[3 * q + 2], sc->values, c);
+    int *g = &sc->cand[3 * q];
+    lmm_mesh_values(L->mesh, g[0], g[1], g[2], sc->values, c);
+    if (L->refined) {
+      /* V(i, x) xi(i, P) + alpha xi(P_j, P), light by light. */
+      for (int l = 0; l < nl; l++) {
+        sh_vec3 pj = p;
+        sh_vec3 v = outer_side(&scene->lights[l], p, n) ? sc->values[l]
+                                                        : sh_v3s(0.0);
+        sh_vec3 alpha = lmm_caustics_paths(L->caustics, g[0], g[1], g[2], l,
+                                           &pj);
+        if (sh_dot(sh_sub(pj, p), n) > 0) v = sh_add(v, alpha);
+        sc->acc[l] = sh_add(sc->acc[l], sh_mul(vxp, v));
+      }
+      continue;
+    }
     for (int l = 0; l < nl; l++)
       sc->acc[l] = sh_add(sc->acc[l], sh_mul(vxp, sc->values[l]));
   }
@@ -116,8 +129,11 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
       vis[l] = exact(L, origin, p, light, SH_RT_ALL, c);
       continue;
     }
-    vis[l] = outer_side(light, p, n) ? sh_scale(sc->acc[l], 1.0 / m)
-                                     : sh_v3s(0.0);
+    if (L->refined)
+      vis[l] = sh_scale(sc->acc[l], 1.0 / m); /* xi is inside the sum */
+    else
+      vis[l] = outer_side(light, p, n) ? sh_scale(sc->acc[l], 1.0 / m)
+                                       : sh_v3s(0.0);
     if (L->hard && !sh_is_black(vis[l]))
       vis[l] = sh_mul(vis[l], exact(L, origin, p, light, SH_RT_HARD, c));
   }
@@ -194,7 +210,8 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
       lmm_free(L);
       return st;
     }
-    lmm_mesh_set_caustics(L->mesh, L->caustics);
+    L->refined = opt->refined;
+    lmm_mesh_set_caustics(L->mesh, L->caustics, !L->refined);
     L->build_seconds = sh_seconds() - t0;
   }
   int nl = scene->nlights > 0 ? scene->nlights : 1;

@@ -33,6 +33,9 @@ typedef struct lmm_options {
   int64_t caustic_rays;  /* refract-both: rays per light and shape */
   int capacity_log2;     /* mesh table size (0: default) */
   int volume;            /* 1: the medium's visibility from the mesh too */
+  /* refract-both: the refined variant of section 5, which replaces
+   * xi(i, P) v(i, x) by V(i, x) xi(i, P) + alpha xi(P_j, P). */
+  int refined;
 } lmm_options;
 
 typedef struct lmm_stats {

@@ -34,7 +34,7 @@ static void render(const sh_scene *s, const sh_rt *rt, double h, double kl,
   opt.refract = scheme != SH_SCHEME_STRAIGHT;
   lmm *method = NULL;
   if (h > 0) {
-    lmm_options lo = {h, kl, scheme, 200000, 0, 1};
+    lmm_options lo = {h, kl, scheme, 200000, 0, 1, 0};
     SH_CHECK(lmm_create(s, rt, &lo, opt.threads, &method, NULL) == SH_OK);
     opt.hook = lmm_hook(method);
   }
@@ -238,7 +238,7 @@ static void semitransparent(void) {
 
   /* refract-both: the mesh values straight below the sphere, against the
    * crossings of paraxial and marginal rays. */
-  lmm_options lo = {0.05, 2.0, SH_SCHEME_REFRACT_BOTH, 200000, 0, 1};
+  lmm_options lo = {0.05, 2.0, SH_SCHEME_REFRACT_BOTH, 200000, 0, 1, 0};
   double paraxial = 1.5 / (2.0 * 0.5); /* n R / (2 (n - 1)) from the centre */
   double marginal = axis_crossing(0.7, 1.5);
   fprintf(stderr, "focus expected between %.3f and %.3f below the centre "
@@ -252,7 +252,7 @@ static void semitransparent(void) {
   lmm_caustics *caustics = NULL;
   SH_CHECK(lmm_caustics_build(s, rt, mesh, lo.caustic_rays, &caustics, NULL) ==
            SH_OK);
-  lmm_mesh_set_caustics(mesh, caustics);
+  lmm_mesh_set_caustics(mesh, caustics, 1);
   int ijk[3];
   for (double depth = 1.05; depth < 2.45; depth += lo.h) {
     lmm_mesh_cell(mesh, sh_v3(0.001, 2.5 - depth, 0.001), ijk);
@@ -269,12 +269,94 @@ static void semitransparent(void) {
   SH_CHECK(best_depth > marginal - 2 * lo.h && best_depth < paraxial + 2 * lo.h);
   lmm_mesh_free(mesh);
   lmm_caustics_free(caustics);
+
+  /* The refined variant: on the floor every path's P_j (the lens's lower
+   * surface) is on the outer side, so it agrees with formula 7 there. */
+  sh_image plain = {0}, refined = {0};
+  s->camera.width = s->camera.height = 24;
+  for (int v = 0; v < 2; v++) {
+    sh_reference_options opt = sh_reference_defaults(s);
+    opt.progress = 0;
+    opt.rt = rt;
+    lmm *method = NULL;
+    lmm_options ro = {0.1, 2.0, SH_SCHEME_REFRACT_BOTH, 50000, 0, 1, v};
+    SH_CHECK(lmm_create(s, rt, &ro, 2, &method, NULL) == SH_OK);
+    opt.threads = 2;
+    opt.hook = lmm_hook(method);
+    SH_CHECK(sh_render_reference(s, &opt, v ? &refined : &plain, NULL, NULL) ==
+             SH_OK);
+    lmm_free(method);
+  }
+  double diff = 0, total = 0;
+  for (int i = 0; i < plain.width * plain.height * 3; i++) {
+    diff += fabs(plain.rgb[i] - refined.rgb[i]);
+    total += plain.rgb[i];
+  }
+  fprintf(stderr, "refined against formula 7 on the lens scene: %.3g%%\n",
+          100 * diff / total);
+  SH_CHECK(diff < 0.01 * total);
+  sh_image_free(&plain);
+  sh_image_free(&refined);
   sh_rt_free(rt);
   sh_scene_free(s);
 }
 
+/* Writes text with its first `from` replaced by `to` into buf. */
+static const char *edit(char *buf, size_t size, const char *text,
+                        const char *from, const char *to) {
+  const char *at = strstr(text, from);
+  SH_CHECK(at != NULL);
+  if (!at) return text;
+  snprintf(buf, size, "%.*s%s%s", (int)(at - text), text, to,
+           at + strlen(from));
+  return buf;
+}
+
+/* The user controls of the paper's conclusion: each of them, applied to the
+ * only light, caster or receiver, gives back the RRTA's hard shadows. */
+static void controls(void) {
+  char tmp[8192], base[8192], text[8192];
+  edit(tmp, sizeof tmp, FLOOR_BOX, "{\"type\": \"box\", \"material\": \"m\"",
+       "{\"type\": \"box\", \"material\": \"b\"");
+  edit(base, sizeof base, tmp, "\"materials\": {",
+       "\"materials\": {\"b\": {\"diffuse\": [0.8, 0.8, 0.8]}, ");
+  const char *variants[3][2] = {
+      {"\"intensity\": [20, 20, 20]}", "\"intensity\": [20, 20, 20], "
+                                        "\"soft_shadows\": false}"},
+      {"\"b\": {\"diffuse\": [0.8, 0.8, 0.8]}",
+       "\"b\": {\"diffuse\": [0.8, 0.8, 0.8], \"casts_soft_shadows\": false}"},
+      {"\"m\": {\"diffuse\": [0.8, 0.8, 0.8]}",
+       "\"m\": {\"diffuse\": [0.8, 0.8, 0.8], \"receives_soft_shadows\": "
+       "false}"}};
+  const char *names[3] = {"light soft_shadows false",
+                          "caster casts_soft_shadows false",
+                          "receiver receives_soft_shadows false"};
+  for (int v = 0; v < 3; v++) {
+    sh_scene *s = parse(edit(text, sizeof text, base, variants[v][0],
+                             variants[v][1]));
+    SH_CHECK(s != NULL);
+    if (!s) continue;
+    sh_rt *rt = NULL;
+    SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
+    sh_image a = {0}, b = {0};
+    render(s, rt, 0, 0, SH_SCHEME_REFRACT_TRACE, &a, NULL);
+    render(s, rt, 0.1, 2.0, SH_SCHEME_REFRACT_TRACE, &b, NULL);
+    double worst = 0;
+    for (int i = 0; i < a.width * a.height * 3; i++)
+      worst = fmax(worst, fabs(a.rgb[i] - b.rgb[i]));
+    fprintf(stderr, "%s: largest difference from RRTA %.3g\n", names[v],
+            worst);
+    SH_CHECK(worst < 1e-6);
+    sh_image_free(&a);
+    sh_image_free(&b);
+    sh_rt_free(rt);
+    sh_scene_free(s);
+  }
+}
+
 int main(void) {
   properties();
+  controls();
   no_leaks();
   semitransparent();
   SH_TEST_DONE();

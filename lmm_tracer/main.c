@@ -38,6 +38,7 @@ static void usage(FILE *f) {
 "                      of the shapes' diagonal)\n"
 "  --kl KL             lmm: interpolation radius r = H * KL (default 2)\n"
 "  --caustic-rays N    lmm, refract-both: rays per light and shape (200000)\n"
+"  --refined           lmm, refract-both: the refined variant of section 5\n"
 "  --lmm-volume M      lmm with a medium: mesh (default) interpolates the\n"
 "                      volumetric shadows from the mesh; exact traces them\n"
 "  --area-radius R     whitted: point and spot lights become spheres of\n"
@@ -68,7 +69,7 @@ typedef struct args {
   const char *scene, *stats;
   const char *outputs[MAX_OUTPUTS];
   int noutputs;
-  int mode, scheme, local, quiet, has_exposure, volume_exact;
+  int mode, scheme, local, quiet, has_exposure, volume_exact, refined;
   long spp, max_depth, seed, threads, caustic_rays, area_samples;
   double exposure, mesh_step, kl, area_radius;
 } args;
@@ -111,6 +112,9 @@ static int parse_args(int argc, char **argv, args *a) {
       continue;
     } else if (!strcmp(o, "--local")) {
       a->local = 1;
+      continue;
+    } else if (!strcmp(o, "--refined")) {
+      a->refined = 1;
       continue;
     } else if (o[0] == '-' && o[1] != '\0' && !v) {
       fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
@@ -177,6 +181,11 @@ static int parse_args(int argc, char **argv, args *a) {
               a->outputs[k]);
       return 2;
     }
+  }
+  if (a->refined && a->mode != MODE_LMM) {
+    fprintf(stderr, "%s: --refined needs --mode lmm --scheme refract-both\n",
+            TOOL);
+    return 2;
   }
   if (a->area_radius >= 0 && a->mode != MODE_WHITTED) {
     fprintf(stderr, "%s: --area-radius needs --mode whitted\n", TOOL);
@@ -266,7 +275,10 @@ int main(int argc, char **argv) {
   sh_image img = {0};
   sh_reference_stats st;
   sh_status status = SH_OK;
-  if (scheme == SH_SCHEME_REFRACT_BOTH && a.mode != MODE_LMM)
+  if (a.refined && scheme != SH_SCHEME_REFRACT_BOTH)
+    status = sh_error_set(&err, SH_ERR_ARG,
+                          "--refined is a variant of the refract-both scheme");
+  else if (scheme == SH_SCHEME_REFRACT_BOTH && a.mode != MODE_LMM)
     status = sh_error_set(&err, SH_ERR_ARG,
                           "the refract-both scheme needs --mode lmm: "
                           "refracted visibility comes from the light mesh");
@@ -279,6 +291,7 @@ int main(int argc, char **argv) {
     lo.scheme = scheme;
     lo.caustic_rays = a.caustic_rays > 0 ? a.caustic_rays : 200000;
     lo.volume = !a.volume_exact;
+    lo.refined = a.refined;
     status = lmm_create(scene, rt, &lo, opt.threads, &method, &err);
     if (status == SH_OK) opt.hook = lmm_hook(method);
   } else if (status == SH_OK && a.area_radius >= 0) {
