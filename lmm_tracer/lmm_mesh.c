@@ -214,8 +214,12 @@ static uint64_t hash64(uint64_t x) {
   return x;
 }
 
-void lmm_mesh_values(lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
-                     sh_rt_counters *c) {
+/* The cached entry of point (i, j, k), computed and published on first
+ * use (vis is scratch for the computation). NULL if it could not be cached
+ * (table full, or another thread is computing it); then vis holds the
+ * values. */
+static const unsigned char *entry_of(lmm_mesh *m, int i, int j, int k,
+                                     sh_vec3 *vis, sh_rt_counters *c) {
   uint64_t key = 1 + (uint64_t)i +
                  (uint64_t)m->n[0] * ((uint64_t)j + (uint64_t)m->n[1] * k);
   uint64_t s = hash64(key) & m->mask;
@@ -223,10 +227,8 @@ void lmm_mesh_values(lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
     slot *sl = &m->slots[s];
     uint64_t cur = __atomic_load_n(&sl->key, __ATOMIC_ACQUIRE);
     if (cur == key) {
-      if (__atomic_load_n(&sl->ready, __ATOMIC_ACQUIRE)) {
-        load(m, pool_entry(m, sl->value), vis);
-        return;
-      }
+      if (__atomic_load_n(&sl->ready, __ATOMIC_ACQUIRE))
+        return pool_entry(m, sl->value);
       break; /* another thread is computing it: compute a private copy */
     }
     if (cur != 0) continue;
@@ -241,15 +243,51 @@ void lmm_mesh_values(lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
     }
     unsigned char *dst = pool_entry(m, v);
     compute(m, i, j, k, vis, c);
-    if (!dst) break;
+    if (!dst) {
+      __atomic_fetch_add(&m->uncached, 1, __ATOMIC_RELAXED);
+      return NULL;
+    }
     store(m, dst, vis);
     sl->value = v;
     __atomic_store_n(&sl->ready, 1, __ATOMIC_RELEASE);
     __atomic_fetch_add(&m->computed, 1, __ATOMIC_RELAXED);
-    return;
+    return dst;
   }
   compute(m, i, j, k, vis, c);
   __atomic_fetch_add(&m->uncached, 1, __ATOMIC_RELAXED);
+  return NULL;
+}
+
+void lmm_mesh_values(lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
+                     sh_rt_counters *c) {
+  const unsigned char *e = entry_of(m, i, j, k, vis, c);
+  if (e) load(m, e, vis);
+}
+
+int lmm_mesh_bits(lmm_mesh *m, int i, int j, int k, uint64_t *words,
+                  sh_rt_counters *c) {
+  if (!m->bits) return 0;
+  /* Scratch for a computation; the bit layout is what store() writes. */
+  sh_vec3 vis[64];
+  int nwords = (m->nlights + 63) / 64;
+  if (m->nlights <= 64) {
+    const unsigned char *e = entry_of(m, i, j, k, vis, c);
+    if (e)
+      memcpy(words, e, 8 * (size_t)nwords);
+    else
+      store(m, (unsigned char *)words, vis);
+    return 1;
+  }
+  /* Many lights: go through the float path (rare; scratch on the heap). */
+  sh_vec3 *big = malloc(sizeof *big * (size_t)m->nlights);
+  if (!big) return 0;
+  const unsigned char *e = entry_of(m, i, j, k, big, c);
+  if (e)
+    memcpy(words, e, 8 * (size_t)nwords);
+  else
+    store(m, (unsigned char *)words, big);
+  free(big);
+  return 1;
 }
 
 void lmm_mesh_get_stats(const lmm_mesh *m, lmm_mesh_stats *st) {

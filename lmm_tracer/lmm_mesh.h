@@ -62,6 +62,13 @@ int lmm_mesh_contains(const lmm_mesh *mesh, int i, int j, int k);
 void lmm_mesh_values(lmm_mesh *mesh, int i, int j, int k, sh_vec3 *vis,
                      sh_rt_counters *c);
 
+/* In opaque scenes (bit storage): writes the light mask of point (i, j, k)
+ * into words[0 .. (nlights + 63) / 64 - 1], bit l set if light l is
+ * visible, computing it on first use. Returns 0 (and writes nothing) if the
+ * mesh stores floats. */
+int lmm_mesh_bits(lmm_mesh *mesh, int i, int j, int k, uint64_t *words,
+                  sh_rt_counters *c);
+
 void lmm_mesh_get_stats(const lmm_mesh *mesh, lmm_mesh_stats *stats);
 
 #endif

@@ -17,6 +17,8 @@ typedef struct scratch {
   double *len;
   unsigned char *blocked;
   int max_cand;
+  uint64_t *words; /* one mesh point's light mask */
+  int *count;      /* per light: visible candidates that see it */
   int64_t shaded, empty, candidates, volume;
   char pad[64];
 } scratch;
@@ -30,7 +32,7 @@ struct lmm {
   sh_shadow_hook hook;
   scratch *scratch;
   int threads;
-  int semi, hard, refined;
+  int semi, hard, refined, bits;
   double build_seconds;
 };
 
@@ -93,7 +95,23 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
     sh_rt_occluded_stream(L->rt, nc, sc->org, sc->dir, sc->len, SH_RT_OPAQUE,
                           1, sc->blocked, c);
   int m = 0;
-  for (int q = 0; q < nc; q++) {
+  if (L->bits) {
+    /* Opaque scenes: count, light by light, the visible candidates that
+     * see the light. */
+    int nw = (nl + 63) / 64;
+    memset(sc->count, 0, sizeof *sc->count * (size_t)nl);
+    for (int q = 0; q < nc; q++) {
+      if (sc->blocked[q]) continue;
+      int *g = &sc->cand[3 * q];
+      if (!lmm_mesh_bits(L->mesh, g[0], g[1], g[2], sc->words, c)) break;
+      m++;
+      for (int w = 0; w < nw; w++)
+        for (uint64_t bits = sc->words[w]; bits; bits &= bits - 1)
+          sc->count[64 * w + __builtin_ctzll(bits)]++;
+    }
+    for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s((double)sc->count[l]);
+  }
+  for (int q = 0; !L->bits && q < nc; q++) {
     sh_vec3 vxp;
     if (L->semi)
       vxp = sh_rt_visibility(L->rt, origin, sc->dir[q], sc->len[q], c);
@@ -233,12 +251,17 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
     sc->dir = calloc((size_t)max_cand, sizeof(sh_vec3));
     sc->len = calloc((size_t)max_cand, sizeof(double));
     sc->blocked = calloc((size_t)max_cand, 1);
+    sc->words = calloc((size_t)(nl + 63) / 64, sizeof(uint64_t));
+    sc->count = calloc((size_t)nl, sizeof(int));
     if (!sc->values || !sc->acc || !sc->cand || !sc->org || !sc->dir ||
-        !sc->len || !sc->blocked) {
+        !sc->len || !sc->blocked || !sc->words || !sc->count) {
       lmm_free(L);
       return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
     }
   }
+  lmm_mesh_stats ms;
+  lmm_mesh_get_stats(L->mesh, &ms);
+  L->bits = ms.bits;
   L->hook.surface = surface;
   L->hook.volume = opt->volume ? volume : NULL;
   L->hook.user = L;
@@ -258,6 +281,8 @@ void lmm_free(lmm *L) {
       free(sc->dir);
       free(sc->len);
       free(sc->blocked);
+      free(sc->words);
+      free(sc->count);
     }
   free(L->scratch);
   lmm_mesh_free(L->mesh);
