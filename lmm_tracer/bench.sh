@@ -8,4 +8,4 @@ cmake --build "$build" --target lmm_bench -j "$(nproc)" >/dev/null
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 echo "date: $(date -u +%Y-%m-%d)"
 echo
-"$build/lmm_tracer/lmm_bench" "$@"
+SHAFTS_SOURCE_DIR=$(cd "$(dirname "$0")/.." && pwd) "$build/lmm_tracer/lmm_bench" "$@"

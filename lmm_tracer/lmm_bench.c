@@ -275,6 +275,58 @@ static void ceiling(int size) {
   sh_scene_free(s);
 }
 
+/* With a medium: volumetric shadows interpolated from the light mesh
+ * against traced ones, both against the reference. */
+static void volume(const char *path, int quick) {
+  printf("## Volumetric shadows from the light mesh (%s)\n\n", path);
+  sh_scene *s = NULL;
+  if (sh_scene_load(path, &s, NULL) != SH_OK) {
+    printf("cannot load %s\n\n", path);
+    return;
+  }
+  if (quick) {
+    s->camera.width /= 2;
+    s->camera.height /= 2;
+  }
+  sh_rt *rt = NULL;
+  if (sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
+  sh_reference_options opt = sh_reference_defaults(s);
+  opt.progress = 0;
+  opt.threads = sh_reference_threads(0);
+  opt.rt = rt;
+  sh_image ref = {0};
+  opt.spp = 256;
+  sh_reference_stats st;
+  sh_render_reference(s, &opt, &ref, &st, NULL);
+  printf("reference: spp 256, %.2f s\n\n", st.seconds);
+  printf("| render | spp | seconds | error vs reference |\n|---|---|---|---|\n");
+  opt.spp = 16;
+  opt.seed = 1;
+  for (int v = 0; v < 3; v++) {
+    lmm *L = NULL;
+    opt.hook = NULL;
+    if (v > 0) {
+      lmm_options lo = {lmm_default_step(s), 2.0, SH_SCHEME_REFRACT_TRACE, 0,
+                        0, v == 2, 0};
+      lmm_create(s, rt, &lo, opt.threads, &L, NULL);
+      opt.hook = lmm_hook(L);
+    }
+    sh_image img = {0};
+    sh_render_reference(s, &opt, &img, &st, NULL);
+    const char *name[] = {"reference (traced shadow rays)",
+                          "LMM surfaces, traced volume shadows",
+                          "LMM surfaces and volume shadows from the mesh"};
+    printf("| %s | %d | %.2f | %.2f%% |\n", name[v], opt.spp, st.seconds,
+           100 * rel_error(&img, &ref));
+    sh_image_free(&img);
+    lmm_free(L);
+  }
+  printf("\n");
+  sh_image_free(&ref);
+  sh_rt_free(rt);
+  sh_scene_free(s);
+}
+
 int main(int argc, char **argv) {
   int quick = argc > 1 && !strcmp(argv[1], "--quick");
   int sizes_full[] = {512, 1024}, sizes_quick[] = {128};
@@ -285,5 +337,9 @@ int main(int argc, char **argv) {
     scaling(sizes_full, 2);
   area_quality(quick ? 96 : 256);
   ceiling(quick ? 128 : 512);
+  const char *src = getenv("SHAFTS_SOURCE_DIR");
+  char path[1024];
+  snprintf(path, sizeof path, "%s/scenes/teapot_spot.json", src ? src : ".");
+  volume(path, quick);
   return 0;
 }
