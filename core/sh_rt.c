@@ -21,6 +21,7 @@ typedef struct sh__prim {
   sh_vec3 axis;
   double length;
   unsigned mask; /* the shape's SH_RT_* class bit */
+  int identity;  /* the shape has no transform: skip the matrices */
 } sh__prim;
 
 struct sh_rt {
@@ -129,11 +130,14 @@ static int analytic_query(const sh__prim *pr, const float *ray, unsigned N,
   sh_vec3 d = sh_v3(SOA(ray, RAY_DIR_X, N, i), SOA(ray, RAY_DIR_Y, N, i),
                     SOA(ray, RAY_DIR_Z, N, i));
   const sh_shape *s = pr->shape;
-  sh_vec3 lo = sh_xform_point(&s->inv, o), ld = sh_xform_vector(&s->inv, d);
-  if (!analytic_hit(pr, lo, ld, SOA(ray, RAY_TNEAR, N, i),
+  if (!pr->identity) {
+    o = sh_xform_point(&s->inv, o);
+    d = sh_xform_vector(&s->inv, d);
+  }
+  if (!analytic_hit(pr, o, d, SOA(ray, RAY_TNEAR, N, i),
                     SOA(ray, RAY_TFAR, N, i), t, n))
     return 0;
-  *n = sh_normalize(sh_xform_normal(&s->inv, *n));
+  if (!pr->identity) *n = sh_normalize(sh_xform_normal(&s->inv, *n));
   return 1;
 }
 
@@ -187,6 +191,8 @@ static void analytic_bounds(const struct RTCBoundsFunctionArguments *a) {
 
 static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
   pr->shape = s;
+  sh_mat4 id = sh_mat4_identity();
+  pr->identity = memcmp(&s->xform, &id, sizeof id) == 0;
   if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER) {
     pr->analytic = 1;
     if (s->type == SH_SHAPE_CYLINDER) {
