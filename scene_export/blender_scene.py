@@ -1,1 +1,482 @@
-# placeholder
+# Blender 3.4 loader for a scene exported by scene_export (--to blender).
+#
+# This file is the same for every scene: the scene lives in the JSON file
+# next to it (same name, .json), which is read with json.load and only ever
+# used as data. Render with
+#
+#   blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr
+#           [--samples N] [--seed S]
+#
+# (EEVEE needs an OpenGL context: run it under xvfb-run.) The image is
+# linear radiance, 32-bit float OpenEXR, one sample position per pixel
+# centre. Exit status: 0 on success, 2 for bad arguments or data, 1 if
+# rendering fails. See docs/scene_export.md for what is exact and what is
+# approximated.
+import json
+import math
+import os
+import sys
+
+import bpy
+from mathutils import Matrix
+
+USAGE = ("usage: blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr "
+         "[--samples N] [--seed S]")
+
+
+class DataError(Exception):
+    """The arguments or the JSON data are not what the exporter writes."""
+
+
+def parse_args(argv):
+    args = argv[argv.index("--") + 1:] if "--" in argv else []
+    opts = {"engine": "cycles", "out": None, "samples": None, "seed": None}
+    i = 0
+    while i < len(args):
+        key = args[i]
+        if key in ("-h", "--help"):
+            print(USAGE)
+            sys.exit(0)
+        if key not in ("--engine", "--out", "--samples", "--seed") or i + 1 >= len(args):
+            raise DataError("unknown or incomplete option %r; %s" % (key, USAGE))
+        value = args[i + 1]
+        if key == "--engine":
+            if value not in ("cycles", "eevee"):
+                raise DataError("--engine expects cycles or eevee, got %r" % value)
+            opts["engine"] = value
+        elif key == "--out":
+            opts["out"] = os.path.abspath(value)
+        else:
+            try:
+                number = int(value)
+            except ValueError:
+                number = -1
+            if number < (1 if key == "--samples" else 0) or number > 2**31 - 1:
+                raise DataError("%s expects a non-negative integer, got %r" % (key, value))
+            opts[key[2:]] = number
+        i += 2
+    if not opts["out"]:
+        raise DataError("--out IMG.exr is required; " + USAGE)
+    return opts
+
+
+def numbers(value, count=None, what="value"):
+    if not isinstance(value, list) or (count is not None and len(value) != count):
+        raise DataError("%s: expected a list of %s numbers" % (what, count or "some"))
+    for v in value:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise DataError("%s: expected numbers" % what)
+    return [float(v) for v in value]
+
+
+def rgb(value, what):
+    return tuple(numbers(value, 3, what)) + (1.0,)
+
+
+def matrix(value, what):
+    m = numbers(value, 16, what)
+    return Matrix([m[0:4], m[4:8], m[8:12], m[12:16]])
+
+
+def new_object(name, data, scene):
+    obj = bpy.data.objects.new(name, data)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def build_mesh(name, item, what):
+    verts = numbers(item.get("vertices"), None, what + ".vertices")
+    tris = item.get("triangles")
+    if len(verts) % 3 or not isinstance(tris, list) or len(tris) % 3:
+        raise DataError(what + ": vertices and triangles must come in threes")
+    nverts = len(verts) // 3
+    for t in tris:
+        if isinstance(t, bool) or not isinstance(t, int) or not 0 <= t < nverts:
+            raise DataError(what + ": a triangle index is out of range")
+    mesh = bpy.data.meshes.new(name)
+    mesh.from_pydata([tuple(verts[i:i + 3]) for i in range(0, len(verts), 3)], [],
+                     [tuple(tris[i:i + 3]) for i in range(0, len(tris), 3)])
+    mesh.validate(clean_customdata=False)
+    mesh.update()
+    return mesh
+
+
+def node(tree, kind, **inputs):
+    n = tree.nodes.new(kind)
+    for key, value in inputs.items():
+        n.inputs[key].default_value = value
+    return n
+
+
+def add_all(tree, shaders):
+    """The sum of several shader outputs (None if there are none)."""
+    total = None
+    for s in shaders:
+        if total is None:
+            total = s
+        else:
+            add = tree.nodes.new("ShaderNodeAddShader")
+            tree.links.new(total, add.inputs[0])
+            tree.links.new(s, add.inputs[1])
+            total = add.outputs[0]
+    return total
+
+
+def new_material(name):
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    tree = mat.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    return mat, tree, out
+
+
+def surface_material(item, index):
+    """The Whitted material as a sum of closures: Diffuse (Lambert), Glossy
+    (the Phong highlight, approximate), sharp Glossy (mirror), Refraction for
+    traced rays with Transparent for shadow rays (transmit), Emission (with
+    the ambient term) hidden from diffuse rays so that it lights nothing."""
+    what = "materials[%d]" % index
+    mat, tree, out = new_material("material%d %s" % (index, str(item.get("label", ""))[:40]))
+    mat.cycles.sample_as_light = False
+    path = tree.nodes.new("ShaderNodeLightPath")
+    parts = []
+    diffuse = rgb(item.get("diffuse"), what + ".diffuse")
+    if max(diffuse[:3]) > 0:
+        parts.append(node(tree, "ShaderNodeBsdfDiffuse", Color=diffuse, Roughness=0.0).outputs[0])
+    if "glossy" in item:
+        g = node(tree, "ShaderNodeBsdfGlossy", Color=rgb(item["glossy"], what + ".glossy"),
+                 Roughness=numbers([item.get("roughness")], 1, what + ".roughness")[0])
+        g.distribution = "BECKMANN"
+        parts.append(g.outputs[0])
+    mirror = rgb(item.get("mirror"), what + ".mirror")
+    if max(mirror[:3]) > 0:
+        g = node(tree, "ShaderNodeBsdfGlossy", Color=mirror, Roughness=0.0)
+        g.distribution = "SHARP"
+        parts.append(g.outputs[0])
+    transmit = rgb(item.get("transmit"), what + ".transmit")
+    ior = numbers([item.get("ior")], 1, what + ".ior")[0]
+    if max(transmit[:3]) > 0:
+        clear = node(tree, "ShaderNodeBsdfTransparent", Color=transmit)
+        if ior == 1.0:
+            parts.append(clear.outputs[0])
+        else:
+            refr = node(tree, "ShaderNodeBsdfRefraction", Color=transmit, Roughness=0.0, IOR=ior)
+            refr.distribution = "SHARP"
+            mix = tree.nodes.new("ShaderNodeMixShader")
+            tree.links.new(path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
+            tree.links.new(refr.outputs[0], mix.inputs[1])
+            tree.links.new(clear.outputs[0], mix.inputs[2])
+            parts.append(mix.outputs[0])
+        mat.blend_method = "HASHED"
+        mat.shadow_method = "HASHED"
+        mat.use_screen_refraction = ior != 1.0
+    emission = rgb(item.get("emission"), what + ".emission")
+    if max(emission[:3]) > 0:
+        e = node(tree, "ShaderNodeEmission", Color=emission, Strength=1.0)
+        mix = tree.nodes.new("ShaderNodeMixShader")
+        tree.links.new(path.outputs["Is Diffuse Ray"], mix.inputs["Fac"])
+        tree.links.new(e.outputs[0], mix.inputs[1])
+        parts.append(mix.outputs[0])
+    total = add_all(tree, parts)
+    if total is not None:
+        tree.links.new(total, out.inputs["Surface"])
+    else:  # a black, opaque surface
+        tree.links.new(node(tree, "ShaderNodeBsdfDiffuse", Color=(0, 0, 0, 1)).outputs[0],
+                       out.inputs["Surface"])
+    return mat
+
+
+def card_material(item, images, index):
+    """A filter card: transparent, coloured by the light map (or black, for
+    the wall around a window), for shadow rays; fully clear for any other
+    ray, so that only light passing it is filtered."""
+    what = "cards[%d]" % index
+    mat, tree, out = new_material("card%d" % index)
+    path = tree.nodes.new("ShaderNodeLightPath")
+    filt = tree.nodes.new("ShaderNodeBsdfTransparent")
+    image = item.get("image")
+    if isinstance(image, bool) or not isinstance(image, int) or not -1 <= image < len(images):
+        raise DataError(what + ".image: expected an image index or -1")
+    if image >= 0:
+        tex = tree.nodes.new("ShaderNodeTexImage")
+        tex.image = images[image]
+        tex.interpolation = "Linear"
+        tex.extension = "EXTEND"
+        tree.links.new(tex.outputs["Color"], filt.inputs["Color"])
+    else:
+        filt.inputs["Color"].default_value = (0, 0, 0, 1)
+    clear = node(tree, "ShaderNodeBsdfTransparent", Color=(1, 1, 1, 1))
+    mix = tree.nodes.new("ShaderNodeMixShader")
+    tree.links.new(path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
+    tree.links.new(clear.outputs[0], mix.inputs[1])
+    tree.links.new(filt.outputs[0], mix.inputs[2])
+    tree.links.new(mix.outputs[0], out.inputs["Surface"])
+    mat.blend_method = "HASHED"
+    mat.shadow_method = "HASHED"
+    return mat
+
+
+def volume_material(item):
+    """The medium: Volume Scatter lobes (sigma_s = colour * density,
+    Henyey-Greenstein) and Volume Absorption (sigma_a = (1 - colour) *
+    density), no surface."""
+    mat, tree, out = new_material("medium")
+    mat.cycles.homogeneous_volume = True
+    mat.cycles.volume_sampling = "MULTIPLE_IMPORTANCE"
+    parts = []
+    lobes = item.get("scatter")
+    if not isinstance(lobes, list):
+        raise DataError("medium.scatter: expected a list")
+    for k, lobe in enumerate(lobes):
+        what = "medium.scatter[%d]" % k
+        parts.append(node(tree, "ShaderNodeVolumeScatter",
+                          Color=rgb(lobe.get("color"), what + ".color"),
+                          Density=numbers([lobe.get("density")], 1, what)[0],
+                          Anisotropy=numbers([lobe.get("anisotropy")], 1, what)[0]).outputs[0])
+    if "absorption" in item:
+        a = item["absorption"]
+        parts.append(node(tree, "ShaderNodeVolumeAbsorption",
+                          Color=rgb(a.get("color"), "medium.absorption.color"),
+                          Density=numbers([a.get("density")], 1, "medium.absorption")[0]).outputs[0])
+    total = add_all(tree, parts)
+    if total is not None:
+        tree.links.new(total, out.inputs["Volume"])
+    return mat
+
+
+def box_mesh(lo, hi):
+    v = [(lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
+          lo[2] if i & 4 == 0 else hi[2]) for i in range(8)]
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    mesh = bpy.data.meshes.new("medium box")
+    mesh.from_pydata(v, [], faces)
+    mesh.update()
+    return mesh
+
+
+def setup_render(scene, data, opts, medium_box):
+    r = data.get("render", {})
+    render = scene.render
+    render.resolution_x = int(r.get("width", 64))
+    render.resolution_y = int(r.get("height", 48))
+    render.resolution_percentage = 100
+    render.pixel_aspect_x = render.pixel_aspect_y = 1.0
+    render.dither_intensity = 0.0
+    render.film_transparent = False
+    render.use_compositing = False
+    render.use_sequencer = False
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    settings = render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.color_mode = "RGB"
+    settings.exr_codec = "ZIP"
+    depth = int(r.get("max_depth", 5))
+    if opts["engine"] == "cycles":
+        render.engine = "CYCLES"
+        c = scene.cycles
+        c.device = "CPU"
+        c.samples = opts["samples"] or int(r.get("samples_cycles", 64))
+        c.seed = opts["seed"] if opts["seed"] is not None else int(r.get("seed", 0))
+        c.use_adaptive_sampling = False
+        c.use_denoising = False
+        c.max_bounces = depth
+        c.diffuse_bounces = 0
+        c.glossy_bounces = depth
+        c.transmission_bounces = depth
+        c.volume_bounces = 0
+        c.transparent_max_bounces = 64
+        c.caustics_reflective = False
+        c.caustics_refractive = False
+        c.blur_glossy = 0.0
+        c.sample_clamp_direct = 0.0
+        c.sample_clamp_indirect = 0.0
+        c.light_sampling_threshold = 0.0
+        c.pixel_filter_type = "GAUSSIAN"
+        c.filter_width = 0.01
+        c.film_exposure = 1.0
+        if hasattr(c, "use_guiding"):
+            c.use_guiding = False
+    else:
+        render.engine = "BLENDER_EEVEE"
+        e = scene.eevee
+        e.taa_render_samples = opts["samples"] or int(r.get("samples_eevee", 16))
+        render.filter_size = 0.01
+        e.use_gtao = False
+        e.use_bloom = False
+        e.use_ssr = True
+        e.use_ssr_refraction = True
+        e.use_soft_shadows = False
+        e.use_shadow_high_bitdepth = True
+        e.shadow_cube_size = "2048"
+        e.shadow_cascade_size = "2048"
+        e.light_threshold = 1e-4
+        e.use_volumetric_lights = True
+        e.use_volumetric_shadows = True
+        e.volumetric_samples = 256
+        e.volumetric_shadow_samples = 128
+        e.volumetric_tile_size = "2"
+        e.volumetric_sample_distribution = 0.8
+        e.volumetric_light_clamp = 0.0
+        cam = scene.camera
+        e.volumetric_start = max(cam.data.clip_start, 1e-3)
+        far = cam.data.clip_start * 10
+        if medium_box is not None:
+            lo, hi = medium_box
+            p = cam.matrix_world.translation
+            for i in range(8):
+                corner = (lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
+                          lo[2] if i & 4 == 0 else hi[2])
+                far = max(far, math.dist(p, corner))
+        e.volumetric_end = far * 1.01
+
+
+def build(data, base_dir, opts):
+    if not isinstance(data, dict) or data.get("format") != "shafts-blender" or data.get("version") != 1:
+        raise DataError("not a scene_export Blender data file (format shafts-blender, version 1)")
+    for line in data.get("notes", []):
+        print("scene_export note: %s" % str(line).replace("\n", " "))
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+
+    # World: the background radiance, seen by camera, mirror and refracted
+    # rays but lighting nothing (diffuse rays see black), never sampled.
+    world = bpy.data.worlds.new("background")
+    scene.world = world
+    world.use_nodes = True
+    wt = world.node_tree
+    wt.nodes.clear()
+    wout = wt.nodes.new("ShaderNodeOutputWorld")
+    bg = node(wt, "ShaderNodeBackground",
+              Color=rgb(data.get("world", {}).get("background"), "world.background"), Strength=1.0)
+    black = node(wt, "ShaderNodeBackground", Color=(0, 0, 0, 1), Strength=0.0)
+    wpath = wt.nodes.new("ShaderNodeLightPath")
+    wmix = wt.nodes.new("ShaderNodeMixShader")
+    wt.links.new(wpath.outputs["Is Diffuse Ray"], wmix.inputs["Fac"])
+    wt.links.new(bg.outputs[0], wmix.inputs[1])
+    wt.links.new(black.outputs[0], wmix.inputs[2])
+    wt.links.new(wmix.outputs[0], wout.inputs["Surface"])
+    world.cycles.sampling_method = "NONE"
+
+    cam_item = data.get("camera", {})
+    cam = bpy.data.cameras.new("camera")
+    cam.sensor_fit = "VERTICAL"
+    cam.angle_y = numbers([cam_item.get("fov_y")], 1, "camera.fov_y")[0]
+    cam.clip_start = numbers([cam_item.get("clip_start")], 1, "camera.clip_start")[0]
+    cam.clip_end = numbers([cam_item.get("clip_end")], 1, "camera.clip_end")[0]
+    cam_obj = new_object("camera", cam, scene)
+    cam_obj.matrix_world = matrix(cam_item.get("matrix"), "camera.matrix")
+    scene.camera = cam_obj
+
+    for k, item in enumerate(data.get("lights", [])):
+        what = "lights[%d]" % k
+        kind = item.get("type")
+        if kind not in ("POINT", "SPOT", "SUN"):
+            raise DataError(what + ".type: expected POINT, SPOT or SUN")
+        light = bpy.data.lights.new("light%d" % k, kind)
+        light.color = rgb(item.get("color"), what + ".color")[:3]
+        light.energy = numbers([item.get("energy")], 1, what + ".energy")[0]
+        light.use_shadow = True
+        light.use_contact_shadow = False
+        light.cycles.cast_shadow = True
+        if kind == "SUN":
+            light.angle = 0.0
+        else:
+            light.shadow_soft_size = 0.0
+        if kind == "SPOT":
+            light.spot_size = numbers([item.get("spot_size")], 1, what + ".spot_size")[0]
+            light.spot_blend = numbers([item.get("spot_blend")], 1, what + ".spot_blend")[0]
+        obj = new_object("light%d" % k, light, scene)
+        obj.matrix_world = matrix(item.get("matrix"), what + ".matrix")
+
+    images = []
+    for k, item in enumerate(data.get("images", [])):
+        name = item.get("file")
+        # Only plain file names next to the data file are accepted.
+        if not isinstance(name, str) or os.path.basename(name) != name or name in ("", ".", ".."):
+            raise DataError("images[%d].file: expected a file name in the data file's directory" % k)
+        img = bpy.data.images.load(os.path.join(base_dir, name), check_existing=False)
+        img.colorspace_settings.name = "Non-Color"
+        images.append(img)
+
+    materials = [surface_material(item, k) for k, item in enumerate(data.get("materials", []))]
+    for k, item in enumerate(data.get("meshes", [])):
+        what = "meshes[%d]" % k
+        mi = item.get("material")
+        if isinstance(mi, bool) or not isinstance(mi, int) or not 0 <= mi < len(materials):
+            raise DataError(what + ".material: expected a material index")
+        mesh = build_mesh("shape%d" % k, item, what)
+        if item.get("smooth"):
+            for poly in mesh.polygons:
+                poly.use_smooth = True
+            mesh.use_auto_smooth = True
+            mesh.auto_smooth_angle = math.radians(50.0)
+        mesh.materials.append(materials[mi])
+        new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, scene)
+
+    for k, item in enumerate(data.get("cards", [])):
+        what = "cards[%d]" % k
+        mesh = build_mesh("card%d" % k, item, what)
+        if "uvs" in item:
+            uvs = numbers(item["uvs"], 2 * len(mesh.vertices), what + ".uvs")
+            layer = mesh.uv_layers.new(name="UVMap")
+            for loop in mesh.loops:
+                layer.data[loop.index].uv = (uvs[2 * loop.vertex_index], uvs[2 * loop.vertex_index + 1])
+        mesh.materials.append(card_material(item, images, k))
+        obj = new_object("card%d" % k, mesh, scene)
+        obj.visible_camera = False
+        obj.visible_diffuse = False
+        obj.visible_glossy = False
+        obj.visible_transmission = False
+        obj.visible_volume_scatter = False
+        obj.visible_shadow = True
+
+    medium_box = None
+    if "medium" in data:
+        item = data["medium"]
+        lo = numbers(item.get("min"), 3, "medium.min")
+        hi = numbers(item.get("max"), 3, "medium.max")
+        mesh = box_mesh(lo, hi)
+        mesh.materials.append(volume_material(item))
+        new_object("medium", mesh, scene)
+        medium_box = (lo, hi)
+
+    setup_render(scene, data, opts, medium_box)
+    return scene
+
+
+def main():
+    try:
+        opts = parse_args(sys.argv)
+        data_path = os.path.splitext(os.path.abspath(__file__))[0] + ".json"
+        try:
+            with open(data_path, "r", encoding="utf-8") as f:
+                data = json.load(f)
+        except (OSError, ValueError) as e:
+            raise DataError("cannot read the scene data %s: %s" % (data_path, e))
+        scene = build(data, os.path.dirname(data_path), opts)
+    except DataError as e:
+        print("scene_export script: error: %s" % e, file=sys.stderr)
+        sys.exit(2)
+    out = opts["out"]
+    tmp = os.path.join(os.path.dirname(out), ".%s.tmp%d.exr" % (os.path.basename(out), os.getpid()))
+    try:
+        scene.render.filepath = tmp
+        scene.render.use_file_extension = False
+        bpy.ops.render.render(write_still=True)
+        if not os.path.exists(tmp):
+            raise RuntimeError("Blender wrote no image")
+        os.replace(tmp, out)
+    except Exception as e:  # rendering or writing failed: leave nothing behind
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        print("scene_export script: error: rendering failed: %s" % e, file=sys.stderr)
+        sys.exit(1)
+    print("scene_export script: wrote %s" % out)
+
+
+main()

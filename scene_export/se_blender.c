@@ -1,8 +1,397 @@
 #include "se_blender.h"
 
+#include <jansson.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "se_geom.h"
+#include "se_phase.h"
+#include "se_text.h"
+#include "sh_camera.h"
+#include "sh_tessellate.h"
+
+/* The state of one export. */
+typedef struct blend {
+  const sh_scene *scene;
+  const se_options *opt;
+  se_notes *notes;
+  sh_vec3 center;
+  double radius;
+  const char *name; /* the output's base name, for the light-map files */
+  const char *dir;  /* the output's directory, with its slash, dir_len long */
+  int dir_len;
+  se_output *out;
+} blend;
+
+/* Scene space (Y up) to Blender's (Z up): a rotation about X. */
+static sh_vec3 to_blender(sh_vec3 v) { return sh_v3(v.x, -v.z, v.y); }
+
+static json_t *vec(sh_vec3 v) { return json_pack("[fff]", v.x, v.y, v.z); }
+/* Appends the three coordinates of scene point p, in Blender's space. */
+static void push_point(json_t *a, sh_vec3 p) {
+  sh_vec3 v = to_blender(p);
+  json_array_append_new(a, json_real(v.x));
+  json_array_append_new(a, json_real(v.y));
+  json_array_append_new(a, json_real(v.z));
+}
+
+/* A 4x4 matrix, row-major, from its columns (in scene space) and a
+ * translation. */
+static json_t *frame(sh_vec3 x, sh_vec3 y, sh_vec3 z, sh_vec3 t) {
+  sh_vec3 c[4] = {to_blender(x), to_blender(y), to_blender(z), to_blender(t)};
+  json_t *m = json_array();
+  for (int r = 0; r < 3; r++)
+    for (int k = 0; k < 4; k++) json_array_append_new(m, json_real(sh_vget(c[k], r)));
+  for (int k = 0; k < 4; k++) json_array_append_new(m, json_real(k == 3 ? 1.0 : 0.0));
+  return m;
+}
+
+/* A colour as a Blender light colour (max channel 1) and a scale. */
+static double split_colour(sh_vec3 c, sh_vec3 *unit) {
+  double m = sh_max3(c);
+  *unit = m > 0 ? sh_scale(c, 1.0 / m) : sh_v3s(1.0);
+  return m;
+}
+
+static json_t *camera(blend *b) {
+  sh_camera_frame f;
+  sh_camera_frame_init(&b->scene->camera, &f);
+  return json_pack("{s:o, s:f, s:f, s:f}", "matrix",
+                   frame(f.right, f.up, sh_neg(f.forward), f.origin), "fov_y",
+                   b->scene->camera.fov_y_deg * SH_PI / 180.0, "clip_start",
+                   1e-4 * b->radius, "clip_end", 100.0 * b->radius);
+}
+
+/* The image of a spot's card that turns Cycles' profile cos(theta) *
+ * smoothstep into the format's cos(theta)^exponent * smoothstep (times the
+ * light map, if any): texel by texel cos(theta)^(exponent - 1) / k, k the
+ * largest value inside the cone, by which the light's power is multiplied.
+ * The texels cover the light map's square [-tan outer, tan outer]^2 at unit
+ * distance, at the map's resolution (256 x 256 without a map). NULL if out
+ * of memory. */
+static sh_image *spot_profile_image(const sh_light *l, double *k) {
+  double e1 = l->exponent - 1.0;
+  *k = e1 < 0 ? pow(l->cos_outer, e1) : 1.0;
+  sh_image *img = calloc(1, sizeof *img);
+  int w = l->has_map ? l->map.width : 256, h = l->has_map ? l->map.height : 256;
+  if (!img || sh_image_alloc(img, w, h, NULL) != SH_OK) {
+    free(img);
+    return NULL;
+  }
+  for (int j = 0; j < h; j++)
+    for (int i = 0; i < w; i++) {
+      double x = (2.0 * (i + 0.5) / w - 1.0) * l->tan_outer;
+      double y = (1.0 - 2.0 * (j + 0.5) / h) * l->tan_outer;
+      double c = 1.0 / sqrt(1.0 + x * x + y * y);
+      double f = pow(c, e1) / *k;
+      float *px = img->rgb + 3 * ((size_t)j * w + i);
+      const float *m = l->has_map ? l->map.rgb + 3 * ((size_t)j * w + i) : NULL;
+      for (int ch = 0; ch < 3; ch++) px[ch] = (float)(f * (m ? m[ch] : 1.0));
+    }
+  return img;
+}
+
+static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
+  const sh_light *l = &b->scene->lights[i];
+  sh_vec3 unit, t, bt;
+  json_t *o;
+  sh_image *profile = NULL; /* a spot's profile card, when it needs one */
+  if (l->type == SH_LIGHT_DIRECTIONAL) {
+    double e = split_colour(l->irradiance, &unit);
+    sh_basis(l->direction, &t, &bt);
+    o = json_pack("{s:s, s:o, s:o, s:f}", "type", "SUN", "matrix",
+                  frame(t, bt, sh_neg(l->direction), sh_madd(b->center, l->direction,
+                                                              -2.0 * b->radius)),
+                  "color", vec(unit), "energy", e);
+  } else {
+    /* Blender: a point light of P watts has intensity P / (4 pi) W/sr; a spot
+     * light the same on its axis. */
+    double e = 4.0 * SH_PI * split_colour(l->intensity, &unit);
+    if (l->type == SH_LIGHT_POINT) {
+      o = json_pack("{s:s, s:o, s:o, s:f}", "type", "POINT", "matrix",
+                    frame(sh_v3(1, 0, 0), sh_v3(0, 1, 0), sh_v3(0, 0, 1), l->position),
+                    "color", vec(unit), "energy", e);
+    } else {
+      double outer = l->outer_deg;
+      if (outer > 90.0) {
+        se_note(b->notes,
+                "lights[%d]: Blender's spot cone is at most 180 degrees wide; the "
+                "half-angle %g is cut to 90.",
+                i, outer);
+        outer = 90.0;
+      }
+      double co = cos(outer * SH_PI / 180.0);
+      double ci = cos(fmin(l->inner_deg, outer) * SH_PI / 180.0);
+      double blend = co < 1.0 ? (ci - co) / (1.0 - co) : 0.0;
+      /* Cycles 3.4 spots carry cos(theta), the format's exponent 1; another
+       * exponent takes a card that filters by cos(theta)^(exponent - 1). */
+      if (l->exponent != 1.0 && outer <= 80.0) {
+        double k;
+        profile = spot_profile_image(l, &k);
+        if (!profile) return NULL;
+        e *= k;
+      } else if (l->exponent != 1.0) {
+        se_note(b->notes,
+                "lights[%d]: a Cycles 3.4 spot multiplies its profile by cos(theta), "
+                "the format's exponent 1, and a cone over 80 degrees takes no "
+                "correcting card; the exponent %g is rendered as 1 (off by "
+                "cos(theta)^%g, a factor %.4g at the cone's edge).",
+                i, l->exponent, l->exponent - 1.0, pow(co, l->exponent - 1.0));
+      }
+      sh_basis(l->direction, &t, &bt);
+      o = json_pack("{s:s, s:o, s:o, s:f, s:f, s:f}", "type", "SPOT", "matrix",
+                    frame(t, bt, sh_neg(l->direction), l->position), "color", vec(unit),
+                    "energy", e, "spot_size", 2.0 * outer * SH_PI / 180.0, "spot_blend",
+                    blend);
+    }
+  }
+  if (!o || (!l->has_map && !profile)) {
+    if (profile) {
+      sh_image_free(profile);
+      free(profile);
+    }
+    return o;
+  }
+
+  /* The light map (or profile): an image file and a card. */
+  char file[600], path[1200];
+  snprintf(file, sizeof file, "%s_map%d.exr", b->name, i);
+  snprintf(path, sizeof path, "%.*s%s", b->dir_len, b->dir, file);
+  int ok = profile ? se_output_owned_image(b->out, path, profile)
+                   : se_output_image(b->out, path, &l->map);
+  if (!ok) {
+    json_decref(o);
+    return NULL;
+  }
+  json_array_append_new(images, json_pack("{s:s}", "file", file));
+  int image = (int)json_array_size(images) - 1;
+  se_card c;
+  if (l->type == SH_LIGHT_SPOT) {
+    c = se_spot_card(l, 2e-3 * b->radius);
+  } else {
+    se_window w = se_window_card(l, b->center, b->radius);
+    c = w.card;
+    /* The wall: the rectangle around the window with the window cut out,
+     * eight vertices (outer 0-3, inner 4-7) and eight triangles. */
+    double x[2] = {w.wall_lo_x, w.wall_hi_x}, y[2] = {w.wall_lo_y, w.wall_hi_y};
+    sh_vec3 p[8] = {se_card_point(&c, x[0], y[0]), se_card_point(&c, x[1], y[0]),
+                    se_card_point(&c, x[1], y[1]), se_card_point(&c, x[0], y[1]),
+                    se_card_point(&c, 0, 0),       se_card_point(&c, 1, 0),
+                    se_card_point(&c, 1, 1),       se_card_point(&c, 0, 1)};
+    json_t *v = json_array(), *tri = json_array();
+    for (int k = 0; k < 8; k++) push_point(v, p[k]);
+    static const int idx[24] = {0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5,
+                                2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+    for (int k = 0; k < 24; k++) json_array_append_new(tri, json_integer(idx[k]));
+    json_array_append_new(cards, json_pack("{s:s, s:i, s:o, s:o}", "label", "wall",
+                                           "image", -1, "vertices", v, "triangles", tri));
+  }
+  sh_vec3 p[4] = {se_card_point(&c, 0, 0), se_card_point(&c, 1, 0),
+                  se_card_point(&c, 1, 1), se_card_point(&c, 0, 1)};
+  json_t *v = json_array();
+  for (int k = 0; k < 4; k++) push_point(v, p[k]);
+  json_array_append_new(cards, json_pack("{s:s, s:i, s:o, s:[iiiiii], s:[ffffffff]}",
+                                         "label", "light map", "image", image, "vertices", v,
+                                         "triangles", 0, 1, 2, 0, 2, 3, "uvs", 0.0, 0.0,
+                                         1.0, 0.0, 1.0, 1.0, 0.0, 1.0));
+  return o;
+}
+
+static json_t *material(blend *b, int i) {
+  const sh_material *m = &b->scene->materials[i];
+  char name[80];
+  se_comment_text(m->name, name, sizeof name);
+  json_t *o = json_pack("{s:s, s:o, s:o, s:o, s:f}", "label", name, "diffuse",
+                        vec(m->diffuse), "mirror", vec(m->reflect), "transmit",
+                        vec(m->transmit), "ior", m->ior);
+  if (!o) return NULL;
+  /* Emission, plus the constant ambient term ambient * diffuse. */
+  sh_vec3 e = sh_add(m->emission, sh_mul(b->scene->ambient, m->diffuse));
+  json_object_set_new(o, "emission", vec(e));
+  if (!sh_is_black(m->specular)) {
+    /* The Phong highlight specular (R.V)^n E reflects, at normal incidence,
+     * about specular 2 pi / (n + 2) of the light; a Glossy BSDF with that
+     * colour and the Beckmann roughness of a Blinn lobe of exponent 4n
+     * (alpha = sqrt(2 / (4n + 2)), roughness = sqrt(alpha)) has a similar
+     * highlight. */
+    double n = m->shininess;
+    double alpha = sqrt(2.0 / (4.0 * n + 2.0));
+    sh_vec3 c = sh_scale(m->specular, 2.0 * SH_PI / (n + 2.0));
+    c = sh_vmin(c, sh_v3s(1.0));
+    json_object_set_new(o, "glossy", vec(c));
+    json_object_set_new(o, "roughness", json_real(fmin(sqrt(alpha), 1.0)));
+    se_note(b->notes,
+            "materials[%d] (%s): Cycles has no Phong highlight; it is a Glossy BSDF "
+            "of similar lobe and reflectance, which also reflects other surfaces "
+            "dimly.",
+            i, name);
+  }
+  if (!sh_is_black(m->transmit) && m->ior != 1.0)
+    se_note(b->notes,
+            "materials[%d] (%s): at total internal reflection Cycles' sharp "
+            "Refraction BSDF reflects nothing, where the reference sends the "
+            "transmit weight along the mirror direction.",
+            i, name);
+  return o;
+}
+
+static int det_negative(const sh_mat4 *m) {
+  double a = m->m[0][0], bb = m->m[0][1], c = m->m[0][2];
+  double d = m->m[1][0], e = m->m[1][1], f = m->m[1][2];
+  double g = m->m[2][0], h = m->m[2][1], k = m->m[2][2];
+  return a * (e * k - f * h) - bb * (d * k - f * g) + c * (d * h - e * g) < 0;
+}
+
+static sh_status shape(blend *b, int i, json_t *meshes, sh_error *err) {
+  const sh_shape *s = &b->scene->shapes[i];
+  int curved = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER;
+  double size = s->radius; /* sphere and cylinder; unused for the others */
+  double rel = b->opt->quality == SE_QUALITY_FINAL ? 2e-4 : 1e-3;
+  sh_mesh m = {0};
+  sh_status st = sh_mesh_tessellate(s, curved ? rel * size : 1.0, &m, err);
+  if (st != SH_OK) return st;
+  json_t *v = json_array(), *t = json_array();
+  for (int k = 0; k < m.nverts; k++) {
+    const float *q = m.positions + 3 * k;
+    push_point(v, sh_xform_point(&s->xform, sh_v3(q[0], q[1], q[2])));
+  }
+  /* A mirroring transform turns the triangles inside out: swap two corners
+   * to keep them counter-clockwise seen from outside. */
+  int flip = det_negative(&s->xform);
+  for (int k = 0; k < m.ntris; k++) {
+    const unsigned *q = m.indices + 3 * k;
+    json_array_append_new(t, json_integer(q[0]));
+    json_array_append_new(t, json_integer(q[flip ? 2 : 1]));
+    json_array_append_new(t, json_integer(q[flip ? 1 : 2]));
+  }
+  sh_mesh_free(&m);
+  static const char *names[] = {"mesh", "sphere", "box", "cylinder", "quad",
+                                "heightfield"};
+  json_t *o = json_pack("{s:s, s:i, s:b, s:o, s:o}", "label", names[s->type],
+                        "material", s->material, "smooth", curved, "vertices", v,
+                        "triangles", t);
+  if (!o) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  json_array_append_new(meshes, o);
+  if (curved)
+    se_note(b->notes,
+            "shapes[%d]: Cycles has no exact %s; it is tessellated within %g of "
+            "the surface and smooth-shaded.",
+            i, names[s->type], rel * size);
+  return SH_OK;
+}
+
+static json_t *medium(blend *b) {
+  const sh_medium *m = &b->scene->medium;
+  double eps = 1e-4 * b->radius;
+  sh_vec3 lo = to_blender(sh_sub(m->bmin, sh_v3s(eps)));
+  sh_vec3 hi = to_blender(sh_add(m->bmax, sh_v3s(eps)));
+  sh_vec3 blo = sh_vmin(lo, hi), bhi = sh_vmax(lo, hi);
+  int exact;
+  double g = se_phase_to_hg(&m->phase, &exact);
+  if (!exact)
+    se_note(b->notes,
+            "medium: Cycles has one Henyey-Greenstein lobe per medium; the %s "
+            "phase is rendered as g = %.4g, its mean cosine%s.",
+            se_phase_name(m->phase.type), g,
+            m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
+  json_t *scatter = json_array();
+  sh_vec3 unit;
+  double ds = split_colour(m->sigma_s, &unit);
+  if (ds > 0)
+    json_array_append_new(scatter, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
+                                             "density", ds, "anisotropy", g));
+  json_t *o = json_pack("{s:o, s:o, s:o}", "min", vec(blo), "max", vec(bhi), "scatter",
+                        scatter);
+  double da = sh_max3(m->sigma_a);
+  if (o && da > 0)
+    json_object_set_new(o, "absorption",
+                        json_pack("{s:o, s:f}", "color",
+                                  vec(sh_sub(sh_v3s(1.0), sh_scale(m->sigma_a, 1.0 / da))),
+                                  "density", da));
+  return o;
+}
+
 sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
                            const char *py_path, se_output *out, se_notes *notes,
                            sh_error *err) {
-  (void)scene; (void)opt; (void)py_path; (void)out; (void)notes;
-  return sh_error_set(err, SH_ERR_ARG, "not yet");
+  size_t n = strlen(py_path);
+  if (n < 4 || strcmp(py_path + n - 3, ".py") != 0)
+    return sh_error_set(err, SH_ERR_ARG, "the Blender output '%s' must end in .py",
+                        py_path);
+  const char *base = se_base_name(py_path);
+  size_t name_len = strlen(base) - 3;
+  if (name_len == 0)
+    return sh_error_set(err, SH_ERR_ARG, "the Blender output '%s' has no name", py_path);
+  char *name = malloc(name_len + 1);
+  if (!name) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  memcpy(name, base, name_len);
+  name[name_len] = '\0';
+  blend b = {scene, opt, notes, {0, 0, 0}, 0, name, py_path,
+             (int)(base - py_path), out};
+  se_bounding_sphere(scene, &b.center, &b.radius);
+
+  json_t *images = json_array(), *cards = json_array(), *lights = json_array();
+  json_t *materials = json_array(), *meshes = json_array();
+  sh_status st = SH_OK;
+  for (int i = 0; st == SH_OK && i < scene->nlights; i++) {
+    json_t *o = light(&b, i, images, cards);
+    if (!o) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    json_array_append_new(lights, o);
+  }
+  for (int i = 0; i < scene->nmaterials; i++)
+    json_array_append_new(materials, material(&b, i));
+  for (int i = 0; st == SH_OK && i < scene->nshapes; i++) st = shape(&b, i, meshes, err);
+  if (scene->nlights == 0)
+    se_note(notes, "the scene has no light; the image is black but for emission "
+                   "and ambient.");
+  int samples = opt->quality == SE_QUALITY_FINAL ? 1024 : 64;
+  json_t *root = json_pack(
+      "{s:s, s:i, s:s, s:{s:i, s:i, s:i, s:i, s:i, s:I}, s:{s:o}, s:o, s:o, s:o, "
+      "s:o, s:o, s:o}",
+      "format", "shafts-blender", "version", 1, "comment",
+      "Data for the fixed script next to this file (scene_export --to blender). "
+      "Blender coordinates (Z up), metres, radians, watts.",
+      "render", "width", scene->camera.width, "height", scene->camera.height,
+      "max_depth", scene->render.max_depth, "samples_cycles", samples, "samples_eevee",
+      opt->quality == SE_QUALITY_FINAL ? 64 : 16, "seed", (json_int_t)scene->render.seed,
+      "world", "background", vec(scene->background), "camera", camera(&b), "lights",
+      lights, "materials", materials, "meshes", meshes, "images", images, "cards",
+      cards);
+  if (root && scene->medium.present) json_object_set_new(root, "medium", medium(&b));
+  if (root) {
+    json_t *nt = json_array();
+    for (int i = 0; i < notes->count; i++) {
+      char line[1100];
+      se_comment_text(notes->text[i], line, sizeof line);
+      json_array_append_new(nt, json_string(line));
+    }
+    json_object_set_new(root, "notes", nt);
+  }
+  char *text = st == SH_OK && root
+                   ? json_dumps(root, JSON_COMPACT | JSON_PRESERVE_ORDER |
+                                          JSON_REAL_PRECISION(10))
+                   : NULL;
+  json_decref(root);
+  if (st == SH_OK && !text) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+
+  /* Files: the light maps (added by light()), the data, then the script
+   * that reads them. */
+  if (st == SH_OK) {
+    char *json_path = se_replace_extension(py_path, ".json");
+    se_buf *jb = json_path ? se_output_text(out, json_path) : NULL;
+    se_buf *pb = jb ? se_output_text(out, py_path) : NULL;
+    free(json_path);
+    if (!pb) {
+      st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    } else {
+      se_buf_puts(jb, text);
+      se_buf_puts(jb, "\n");
+      se_buf_append(pb, (const char *)se_blender_script, se_blender_script_size);
+    }
+  }
+  free(text);
+  free(name);
+  return st;
 }

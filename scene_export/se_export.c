@@ -85,6 +85,17 @@ int se_output_image(se_output *out, const char *path, const sh_image *image) {
   return 1;
 }
 
+int se_output_owned_image(se_output *out, const char *path, sh_image *image) {
+  se_file *f = add_file(out, path);
+  if (!f) {
+    sh_image_free(image);
+    free(image);
+    return 0;
+  }
+  f->image = f->owned = image;
+  return 1;
+}
+
 sh_status se_output_write(const se_output *out, sh_error *err) {
   for (int i = 0; i < out->count; i++) {
     const se_file *f = &out->files[i];
@@ -110,6 +121,10 @@ void se_output_free(se_output *out) {
   for (int i = 0; i < out->count; i++) {
     free(out->files[i].path);
     se_buf_free(&out->files[i].text);
+    if (out->files[i].owned) {
+      sh_image_free(out->files[i].owned);
+      free(out->files[i].owned);
+    }
   }
   free(out->files);
   memset(out, 0, sizeof *out);

@@ -48,7 +48,8 @@ void se_notes_free(se_notes *notes);
 typedef struct se_file {
   char *path;          /* owned */
   se_buf text;         /* the contents, when image is NULL */
-  const sh_image *image; /* borrowed from the scene */
+  const sh_image *image; /* borrowed from the scene, or owned (below) */
+  sh_image *owned;       /* an image the output frees */
 } se_file;
 
 typedef struct se_output {
@@ -62,6 +63,9 @@ se_buf *se_output_text(se_output *out, const char *path);
 /* Adds an image file; the image must outlive the output. Returns 0 if out
  * of memory. */
 int se_output_image(se_output *out, const char *path, const sh_image *image);
+/* Adds an image file that the output takes over (and frees, also on
+ * failure). Returns 0 if out of memory. */
+int se_output_owned_image(se_output *out, const char *path, sh_image *image);
 /* Writes every file, each to a temporary file renamed into place. If any
  * write fails, the files already written by this call are removed and the
  * error returned: an export is written whole or not at all. */

@@ -35,42 +35,24 @@ se_phase_pov se_phase_to_pov(const sh_phase *phase) {
   return p;
 }
 
-int se_phase_to_hg(const sh_phase *phase, se_hg_lobe lobes[2], int *exact) {
+double se_phase_to_hg(const sh_phase *phase, int *exact) {
+  const double gmax = 1.0 - 1e-3;
   *exact = 0;
   switch (phase->type) {
   case SH_PHASE_ISOTROPIC:
-    lobes[0].weight = 1.0;
-    lobes[0].g = 0.0;
     *exact = 1;
-    return 1;
+    return 0.0;
   case SH_PHASE_HENYEY_GREENSTEIN:
-    lobes[0].weight = 1.0;
-    lobes[0].g = phase->g;
-    *exact = fabs(phase->g) <= 1.0 - 1e-3;
-    if (!*exact) lobes[0].g = phase->g > 0 ? 1.0 - 1e-3 : -(1.0 - 1e-3);
-    return 1;
+    *exact = fabs(phase->g) <= gmax;
+    return fmax(-gmax, fmin(gmax, phase->g));
   case SH_PHASE_NISHITA_HAZY:
-    lobes[0].weight = 0.5;
-    lobes[0].g = 0.0;
-    lobes[1].weight = 0.5;
-    lobes[1].g = 0.8;
-    return 2;
+    return 0.5 * 0.8;
   case SH_PHASE_NISHITA_MURKY:
-    lobes[0].weight = 33.0 / 83.0;
-    lobes[0].g = 0.0;
-    lobes[1].weight = 50.0 / 83.0;
-    lobes[1].g = 16.0 / 17.0;
-    return 2;
+    return (50.0 / 83.0) * (16.0 / 17.0);
   case SH_PHASE_RAYLEIGH:
-    lobes[0].weight = 0.5;
-    lobes[0].g = sqrt(0.1);
-    lobes[1].weight = 0.5;
-    lobes[1].g = -sqrt(0.1);
-    return 2;
+    return 0.0;
   }
-  lobes[0].weight = 1.0;
-  lobes[0].g = 0.0;
-  return 1;
+  return 0.0;
 }
 
 const char *se_phase_name(sh_phase_type type) {

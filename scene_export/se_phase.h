@@ -7,13 +7,16 @@
  * makes the mapping exact (se_pov.h).
  *
  * Cycles has Henyey-Greenstein lobes only (Volume Scatter's anisotropy,
- * clamped to |g| <= 1 - 1e-3). The Nishita and Rayleigh phases become sums
- * of lobes, each a Volume Scatter shader with its share of sigma_s:
- * - nishita_hazy = 1/2 isotropic + 1/2 lobe 9 x^8 (x = (1 + cos)/2); the
- *   lobe becomes HG with its mean cosine, g = 0.8;
- * - nishita_murky = 33/83 isotropic + 50/83 lobe 50 x^32; HG with g = 16/17;
- * - rayleigh: two HG lobes g = +-sqrt(0.1), half each, which share its
- *   mean cosine 0 and its second moment <cos^2> = 0.4.
+ * clamped to |g| <= 1 - 1e-3), and one lobe per medium: Cycles 3.4 sums the
+ * phase functions of several Volume Scatter closures without their weights
+ * (two lobes of half the density each scatter twice the light, measured),
+ * so a mixture of lobes cannot be built from shaders. The Nishita and
+ * Rayleigh phases become one lobe with the same mean cosine <cos>:
+ * - nishita_hazy: 1/2 isotropic + 1/2 the lobe 9 x^8 (x = (1 + cos)/2,
+ *   whose mean cosine is 0.8): g = 0.4;
+ * - nishita_murky: 33/83 isotropic + 50/83 the lobe 50 x^32 (mean cosine
+ *   16/17): g = 800/1411;
+ * - rayleigh: symmetric, g = 0 (isotropic).
  * These are approximations (the notes say so); isotropic and
  * Henyey-Greenstein are exact. */
 #ifndef SE_PHASE_H
@@ -34,14 +37,9 @@ typedef struct se_phase_pov {
 
 se_phase_pov se_phase_to_pov(const sh_phase *phase);
 
-typedef struct se_hg_lobe {
-  double weight; /* share of sigma_s, the lobes' weights sum to 1 */
-  double g;
-} se_hg_lobe;
-
-/* Writes the Henyey-Greenstein lobes for Cycles (one or two) and returns
- * their number; *exact is 1 if they equal the phase exactly. */
-int se_phase_to_hg(const sh_phase *phase, se_hg_lobe lobes[2], int *exact);
+/* The Henyey-Greenstein g for Cycles; *exact is 1 if the lobe equals the
+ * phase exactly. */
+double se_phase_to_hg(const sh_phase *phase, int *exact);
 
 /* The name of a phase type as the scene format spells it. */
 const char *se_phase_name(sh_phase_type type);
