@@ -75,7 +75,7 @@ Transfer transfer_of(const ImageSpec &spec, double *gamma) {
   return Transfer::srgb;
 }
 
-sh_status read_impl(const char *path, sh_image *img, sh_error *err) {
+sh_status read_impl(const char *path, sh_image *img, bool decode, sh_error *err) {
   struct stat st;
   if (stat(path, &st) != 0 || access(path, R_OK) != 0) {
     int e = errno;
@@ -119,7 +119,7 @@ sh_status read_impl(const char *path, sh_image *img, sh_error *err) {
   in->close();
 
   double gamma = 1.0;
-  Transfer tf = transfer_of(spec, &gamma);
+  Transfer tf = decode ? transfer_of(spec, &gamma) : Transfer::linear;
   sh_image out;
   sh_status st_alloc = sh_image_alloc(&out, w, h, err);
   if (st_alloc != SH_OK)
@@ -253,15 +253,16 @@ sh_status write_impl(const char *path, const sh_image *img, double exposure,
 
 } // namespace
 
-extern "C" sh_status sh_image_read(const char *path, sh_image *img,
-                                   sh_error *err) {
+// Reads with or without decoding the transfer curve, catching everything.
+static sh_status read_guarded(const char *path, sh_image *img, bool decode,
+                              sh_error *err) {
   if (!img)
     return sh_error_set(err, SH_ERR_ARG, "sh_image_read was given no image");
   std::memset(img, 0, sizeof *img);
   if (!path || !*path)
     return sh_error_set(err, SH_ERR_ARG, "sh_image_read was given no path");
   try {
-    return read_impl(path, img, err);
+    return read_impl(path, img, decode, err);
   } catch (const std::bad_alloc &) {
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory reading image '%s'",
                         path);
@@ -272,6 +273,16 @@ extern "C" sh_status sh_image_read(const char *path, sh_image *img,
     return sh_error_set(err, SH_ERR_IMAGE,
                         "cannot read image '%s': unknown exception", path);
   }
+}
+
+extern "C" sh_status sh_image_read(const char *path, sh_image *img,
+                                   sh_error *err) {
+  return read_guarded(path, img, true, err);
+}
+
+extern "C" sh_status sh_image_read_data(const char *path, sh_image *img,
+                                        sh_error *err) {
+  return read_guarded(path, img, false, err);
 }
 
 extern "C" sh_status sh_image_write(const char *path, const sh_image *img,

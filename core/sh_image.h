@@ -30,6 +30,11 @@ void sh_image_free(sh_image *img);
  * an undecodable or zero-size one SH_ERR_IMAGE. */
 sh_status sh_image_read(const char *path, sh_image *img, sh_error *err);
 
+/* As sh_image_read, but the stored values are taken as data, not colour:
+ * no transfer curve is decoded (integer formats map to [0, 1]). For
+ * heightfields, whose grey levels are heights. */
+sh_status sh_image_read_data(const char *path, sh_image *img, sh_error *err);
+
 /* Writes `img` to `path`; the format follows the extension. ".exr" stores
  * 32-bit float linear radiance unchanged. ".png" (and other 8-bit formats)
  * stores clamp(radiance * 2^exposure) encoded with the sRGB curve. */

@@ -227,6 +227,12 @@ static void test_grey_png(void) {
     }
   }
   sh_image_free(&img);
+  /* As data (heightfields): the stored levels, undecoded. */
+  SH_CHECK(sh_image_read_data(path, &img, &err) == SH_OK);
+  if (img.rgb && img.width == 3 && img.height == 2)
+    for (int i = 0; i < 6; i++)
+      SH_CHECK_NEAR(img.rgb[3 * i], pix[i] / 255.0, 1e-6, 1e-7);
+  sh_image_free(&img);
 }
 
 static void test_errors(void) {

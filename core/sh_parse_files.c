@@ -46,7 +46,7 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
 }
 
 sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
-                         sh_image *img, char **path_out) {
+                         int data, sh_image *img, char **path_out) {
   const char *name;
   char *path = NULL;
   sh_status st;
@@ -56,7 +56,8 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
   if ((st = sh__check_file(p, key, name, path, "image", SH_ERR_IMAGE)))
     goto out;
   memset(&e, 0, sizeof e);
-  if ((st = sh_image_read(path, img, &e))) {
+  if ((st = data ? sh_image_read_data(path, img, &e)
+                  : sh_image_read(path, img, &e))) {
     char prefix[700];
     snprintf(prefix, sizeof prefix, "cannot read the image '%s': ", path);
     sh__fail_from(&p->c, key, &e, prefix);

@@ -42,9 +42,10 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
 
 /* Reads the image named by the string member `key` of obj into img (caller
  * frees with sh_image_free); *path_out, if path_out is not NULL, gets the
- * resolved path (caller frees). */
+ * resolved path (caller frees). `data` reads the stored values as they are
+ * (heightfields) instead of decoding colour to linear radiance. */
 sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
-                         sh_image *img, char **path_out);
+                         int data, sh_image *img, char **path_out);
 
 /* Read the "lights" and "shapes" arrays of the root object. Materials and
  * the camera must have been read already. */

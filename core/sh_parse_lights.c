@@ -105,7 +105,7 @@ static sh_status parse_light_map(sh__parser *p, json_t *o, sh_light *l,
                          "u and v are parallel: the light map's window has "
                          "no area");
   }
-  if ((st = sh__load_image(p, m, "image", &l->map, &l->map_file))) return st;
+  if ((st = sh__load_image(p, m, "image", 0, &l->map, &l->map_file))) return st;
   l->has_map = 1;
   sh__pop(c);
   return SH_OK;

@@ -194,7 +194,7 @@ static sh_status parse_heightfield(sh__parser *p, json_t *o, sh_shape *sh) {
   sh_status st;
   sh_error e;
   if ((st = sh__min_max(c, o, &sh->bmin, &sh->bmax)) ||
-      (st = sh__load_image(p, o, "image", &img, &sh->file)))
+      (st = sh__load_image(p, o, "image", 1, &img, &sh->file)))
     return st;
   if (img.width < 2 || img.height < 2) {
     st = sh__fail_at(c, "image", SH_ERR_IMAGE,
