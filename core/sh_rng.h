@@ -26,6 +26,17 @@ static inline void sh_rng_seed(sh_rng *r, uint64_t seed, uint64_t stream) {
   sh_rng_u32(r);
 }
 
+/* A 64-bit mixing function (MurmurHash3's finaliser): spreads keys such as
+ * grid indices over a hash table. */
+static inline uint64_t sh_hash64(uint64_t x) {
+  x ^= x >> 33;
+  x *= 0xff51afd7ed558ccdULL;
+  x ^= x >> 33;
+  x *= 0xc4ceb9fe1a85ec53ULL;
+  x ^= x >> 33;
+  return x;
+}
+
 /* A double uniformly distributed in [0, 1). */
 static inline double sh_rng_next(sh_rng *r) {
   return (double)sh_rng_u32(r) * (1.0 / 4294967296.0);

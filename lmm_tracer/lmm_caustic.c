@@ -22,22 +22,13 @@ struct lmm_caustics {
   int n[3];
 };
 
-static uint64_t hash64(uint64_t x) {
-  x ^= x >> 33;
-  x *= 0xff51afd7ed558ccdULL;
-  x ^= x >> 33;
-  x *= 0xc4ceb9fe1a85ec53ULL;
-  x ^= x >> 33;
-  return x;
-}
-
 static uint64_t key_of(const lmm_caustics *c, int i, int j, int k, int l) {
   uint64_t lin = (uint64_t)i + (uint64_t)c->n[0] * ((uint64_t)j + (uint64_t)c->n[1] * k);
   return 1 + lin * (uint64_t)c->nlights + (uint64_t)l;
 }
 
 static entry *find(const lmm_caustics *c, uint64_t key) {
-  uint64_t s = hash64(key) & c->mask;
+  uint64_t s = sh_hash64(key) & c->mask;
   for (;;) {
     entry *e = &c->table[s];
     if (e->key == key || e->key == 0) return e;

@@ -7,6 +7,7 @@
 
 #include "lmm_caustic.h"
 #include "sh_light.h"
+#include "sh_rng.h"
 
 #define CHUNK_LOG2 12
 #define CHUNK_SIZE (1 << CHUNK_LOG2)
@@ -205,15 +206,6 @@ static unsigned char *pool_entry(lmm_mesh *m, uint32_t v) {
   return chunk ? chunk + m->value_size * (v & (CHUNK_SIZE - 1)) : NULL;
 }
 
-static uint64_t hash64(uint64_t x) {
-  x ^= x >> 33;
-  x *= 0xff51afd7ed558ccdULL;
-  x ^= x >> 33;
-  x *= 0xc4ceb9fe1a85ec53ULL;
-  x ^= x >> 33;
-  return x;
-}
-
 /* The cached entry of point (i, j, k), computed and published on first
  * use (vis is scratch for the computation). NULL if it could not be cached
  * (table full, or another thread is computing it); then vis holds the
@@ -222,7 +214,7 @@ static const unsigned char *entry_of(lmm_mesh *m, int i, int j, int k,
                                      sh_vec3 *vis, sh_rt_counters *c) {
   uint64_t key = 1 + (uint64_t)i +
                  (uint64_t)m->n[0] * ((uint64_t)j + (uint64_t)m->n[1] * k);
-  uint64_t s = hash64(key) & m->mask;
+  uint64_t s = sh_hash64(key) & m->mask;
   for (uint64_t probe = 0; probe <= m->mask; probe++, s = (s + 1) & m->mask) {
     slot *sl = &m->slots[s];
     uint64_t cur = __atomic_load_n(&sl->key, __ATOMIC_ACQUIRE);
