@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# shafts_compare on images with known errors: an image against itself, the
+# same image 10% brighter, one with negative values, one of another size, and
+# bad arguments. The test images come from lmm_tracer and oiiotool.
+set -u
+tool=$1 tracer=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+check() { # description, expected status, actual status
+  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
+}
+field() { # json file, key: prints the value
+  python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])' "$1" "$2"
+}
+near() { # description, value, expected, tolerance
+  if ! python3 -c 'import sys; a,b,t=map(float,sys.argv[1:]); sys.exit(abs(a-b)>t)' "$2" "$3" "$4"; then
+    echo "FAIL: $1: $2, expected $3 +- $4"; fail=1
+  fi
+}
+
+cat >"$dir/s.json" <<'JSON'
+{"format": "shafts-scene", "version": 1,
+ "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
+            "width": 24, "height": 16},
+ "medium": {"sigma_s": [0.1, 0.1, 0.1],
+            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
+ "lights": [{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}],
+ "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
+             "u": [6, 0, 0], "v": [0, 0, -6]}]}
+JSON
+sed 's/"width": 24/"width": 12/' "$dir/s.json" >"$dir/small.json"
+"$tracer" "$dir/s.json" -o "$dir/ref.exr" --spp 8 -q || { echo "FAIL: render"; exit 1; }
+"$tracer" "$dir/small.json" -o "$dir/small.exr" --spp 8 -q || { echo "FAIL: render"; exit 1; }
+oiiotool "$dir/ref.exr" --mulc 1.1 -d float -o "$dir/bright.exr"
+oiiotool "$dir/ref.exr" --subc 1 -d float -o "$dir/negative.exr"
+
+"$tool" --help >"$dir/help"; check "--help" 0 $?
+grep -q "usage: shafts_compare" "$dir/help" || { echo "FAIL: help text"; fail=1; }
+
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --json >"$dir/same.json"; check "same" 0 $?
+near "same rel_rms" "$(field "$dir/same.json" rel_rms)" 0 0
+[ "$(field "$dir/same.json" psnr)" = "None" ] || { echo "FAIL: psnr of identical images is not null"; fail=1; }
+
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --json --diff "$dir/d.png" \
+  --preview "$dir/p.png" >"$dir/bright.json"; check "bright" 0 $?
+near "bright rel_rms" "$(field "$dir/bright.json" rel_rms)" 0.1 1e-5
+near "bright mean_rel" "$(field "$dir/bright.json" mean_rel)" 0.1 1e-5
+near "bright scale" "$(field "$dir/bright.json" scale)" 1.1 1e-5
+near "bright bad_values" "$(field "$dir/bright.json" bad_values)" 0 0
+for f in d.png p.png; do [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail=1; }; done
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/d.exr" >/dev/null; check "exr diff" 0 $?
+[ -s "$dir/d.exr" ] || { echo "FAIL: d.exr not written"; fail=1; }
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.2 >/dev/null; check "within bound" 0 $?
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.05 >/dev/null 2>&1; check "over bound" 3 $?
+
+"$tool" "$dir/ref.exr" "$dir/negative.exr" --json >"$dir/neg.json"; check "negative" 0 $?
+python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["bad_values"] == 0)' "$dir/neg.json" \
+  || { echo "FAIL: negative values not counted"; fail=1; }
+"$tool" "$dir/ref.exr" "$dir/negative.exr" --max-rel-rms 100 >/dev/null 2>&1; check "bad values fail the bound" 3 $?
+
+"$tool" "$dir/ref.exr" "$dir/small.exr" >/dev/null 2>&1; check "size mismatch" 2 $?
+"$tool" "$dir/ref.exr" "$dir/missing.exr" >/dev/null 2>&1; check "missing image" 2 $?
+"$tool" "$dir/ref.exr" >/dev/null 2>&1; check "one image" 2 $?
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --lit 2 >/dev/null 2>&1; check "bad --lit" 2 $?
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --diff "$dir/x.tga" >/dev/null 2>&1; check "bad diff name" 2 $?
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --bogus >/dev/null 2>&1; check "unknown option" 2 $?
+[ -e "$dir/x.tga" ] && { echo "FAIL: an output was written after an error"; fail=1; }
+
+[ $fail = 0 ] && echo "shafts_compare: all checks passed"
+exit $fail
