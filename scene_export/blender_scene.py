@@ -122,6 +122,23 @@ def add_all(tree, shaders):
     return total
 
 
+def seen_by_traced_rays(tree):
+    """A factor that is 1 for camera, glossy and transmission rays and 0 for
+    diffuse and volume-scatter rays: emission, the ambient term and the
+    background are radiance to be seen, never light that illuminates (the
+    Whitted model has no interreflection)."""
+    path = tree.nodes.new("ShaderNodeLightPath")
+    a = tree.nodes.new("ShaderNodeMath")
+    a.operation = "MAXIMUM"
+    tree.links.new(path.outputs["Is Camera Ray"], a.inputs[0])
+    tree.links.new(path.outputs["Is Glossy Ray"], a.inputs[1])
+    b = tree.nodes.new("ShaderNodeMath")
+    b.operation = "MAXIMUM"
+    tree.links.new(a.outputs[0], b.inputs[0])
+    tree.links.new(path.outputs["Is Transmission Ray"], b.inputs[1])
+    return b.outputs[0]
+
+
 def new_material(name):
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
@@ -135,7 +152,7 @@ def surface_material(item, index):
     """The Whitted material as a sum of closures: Diffuse (Lambert), Glossy
     (the Phong highlight, approximate), sharp Glossy (mirror), Refraction for
     traced rays with Transparent for shadow rays (transmit), Emission (with
-    the ambient term) hidden from diffuse rays so that it lights nothing."""
+    the ambient term) seen by traced rays only, so that it lights nothing."""
     what = "materials[%d]" % index
     mat, tree, out = new_material("material%d %s" % (index, str(item.get("label", ""))[:40]))
     mat.cycles.sample_as_light = False
@@ -175,8 +192,8 @@ def surface_material(item, index):
     if max(emission[:3]) > 0:
         e = node(tree, "ShaderNodeEmission", Color=emission, Strength=1.0)
         mix = tree.nodes.new("ShaderNodeMixShader")
-        tree.links.new(path.outputs["Is Diffuse Ray"], mix.inputs["Fac"])
-        tree.links.new(e.outputs[0], mix.inputs[1])
+        tree.links.new(seen_by_traced_rays(tree), mix.inputs["Fac"])
+        tree.links.new(e.outputs[0], mix.inputs[2])
         parts.append(mix.outputs[0])
     total = add_all(tree, parts)
     if total is not None:
@@ -344,7 +361,8 @@ def build(data, base_dir, opts):
     scene = bpy.context.scene
 
     # World: the background radiance, seen by camera, mirror and refracted
-    # rays but lighting nothing (diffuse rays see black), never sampled.
+    # rays but lighting nothing (diffuse and volume rays see black), never
+    # sampled as a light.
     world = bpy.data.worlds.new("background")
     scene.world = world
     world.use_nodes = True
@@ -354,11 +372,10 @@ def build(data, base_dir, opts):
     bg = node(wt, "ShaderNodeBackground",
               Color=rgb(data.get("world", {}).get("background"), "world.background"), Strength=1.0)
     black = node(wt, "ShaderNodeBackground", Color=(0, 0, 0, 1), Strength=0.0)
-    wpath = wt.nodes.new("ShaderNodeLightPath")
     wmix = wt.nodes.new("ShaderNodeMixShader")
-    wt.links.new(wpath.outputs["Is Diffuse Ray"], wmix.inputs["Fac"])
-    wt.links.new(bg.outputs[0], wmix.inputs[1])
-    wt.links.new(black.outputs[0], wmix.inputs[2])
+    wt.links.new(seen_by_traced_rays(wt), wmix.inputs["Fac"])
+    wt.links.new(black.outputs[0], wmix.inputs[1])
+    wt.links.new(bg.outputs[0], wmix.inputs[2])
     wt.links.new(wmix.outputs[0], wout.inputs["Surface"])
     world.cycles.sampling_method = "NONE"
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "se_geom.h"
+#include "se_jsontext.h"
 #include "se_phase.h"
 #include "se_text.h"
 #include "sh_camera.h"
@@ -369,12 +370,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
     }
     json_object_set_new(root, "notes", nt);
   }
-  char *text = st == SH_OK && root
-                   ? json_dumps(root, JSON_COMPACT | JSON_PRESERVE_ORDER |
-                                          JSON_REAL_PRECISION(10))
-                   : NULL;
-  json_decref(root);
-  if (st == SH_OK && !text) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  if (st == SH_OK && !root) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
 
   /* Files: the light maps (added by light()), the data, then the script
    * that reads them. */
@@ -386,12 +382,12 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
     if (!pb) {
       st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
     } else {
-      se_buf_puts(jb, text);
+      se_json_text(jb, root, 0);
       se_buf_puts(jb, "\n");
       se_buf_append(pb, (const char *)se_blender_script, se_blender_script_size);
     }
   }
-  free(text);
+  json_decref(root);
   free(name);
   return st;
 }

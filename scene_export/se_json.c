@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "se_jsontext.h"
+
 static json_t *vec(sh_vec3 v) {
   return json_pack("[fff]", v.x, v.y, v.z);
 }
@@ -175,17 +177,12 @@ sh_status se_json_build(const sh_scene *s, const char *json_path, se_output *out
                  json_array_size(shapes) == (size_t)s->nshapes &&
                  json_object_get(root, "render") &&
                  (!s->medium.present || json_object_get(root, "medium"));
-  char *text = complete ? json_dumps(root, JSON_INDENT(2) | JSON_PRESERVE_ORDER |
-                                               JSON_REAL_PRECISION(17))
-                        : NULL;
-  json_decref(root);
-  if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  se_buf *b = se_output_text(out, json_path);
+  se_buf *b = complete ? se_output_text(out, json_path) : NULL;
   if (b) {
-    se_buf_puts(b, text);
+    se_json_text(b, root, 2);
     se_buf_puts(b, "\n");
   }
-  free(text);
+  json_decref(root);
   if (!b) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   return SH_OK;
 }
