@@ -1,7 +1,7 @@
 /* se_imgdiff: compares two linear EXR images over the lit region of the
  * first (the reference) and prints the statistics as one JSON object.
  *
- *   se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]
+ *   se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--mask MASK.exr] [--map]
  *
  * A pixel is lit when the mean of its reference channels exceeds FRACTION
  * (default 0.01) times the largest such mean in the image. Printed:
@@ -12,6 +12,9 @@
  *              error shows here),
  *   max_rel    the largest per-pixel relative difference,
  *   p90_rel    its 90th percentile.
+ * --mask takes the lit region and the denominators from MASK.exr instead of
+ * REF.exr: `se_imgdiff A.exr B.exr --mask REF.exr` measures how far two
+ * noisy renders (two seeds) are apart, relative to the reference.
  * --map also prints a coarse grid of test/ref ratios for inspection.
  * Exit status: 0, or 2 for bad arguments, unreadable images or images of
  * different sizes. */
@@ -33,44 +36,48 @@ static double pixel_mean(const sh_image *img, int i) {
 }
 
 int main(int argc, char **argv) {
-  const char *paths[2] = {NULL, NULL};
+  const char *paths[3] = {NULL, NULL, NULL}; /* ref, test, mask */
   int npaths = 0, map = 0;
   double frac = 0.01;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--lit") && i + 1 < argc) {
       if (!sh_cli_double("se_imgdiff", "--lit", argv[++i], &frac)) return 2;
+    } else if (!strcmp(argv[i], "--mask") && i + 1 < argc) {
+      paths[2] = argv[++i];
     } else if (!strcmp(argv[i], "--map")) {
       map = 1;
     } else if (argv[i][0] != '-' && npaths < 2) {
       paths[npaths++] = argv[i];
     } else {
-      fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]\n");
+      fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--mask MASK.exr] [--map]\n");
       return 2;
     }
   }
   if (npaths != 2) {
-    fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--map]\n");
+    fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--mask MASK.exr] [--map]\n");
     return 2;
   }
-  sh_image img[2] = {{0}, {0}};
+  sh_image img[3] = {{0}, {0}, {0}};
   sh_error err;
-  for (int k = 0; k < 2; k++)
+  int nimg = paths[2] ? 3 : 2;
+  for (int k = 0; k < nimg; k++)
     if (sh_image_read(paths[k], &img[k], &err) != SH_OK) {
       int code = sh_cli_report("se_imgdiff", &err);
-      sh_image_free(&img[0]);
+      for (int j = 0; j < k; j++) sh_image_free(&img[j]);
       return code;
     }
-  if (img[0].width != img[1].width || img[0].height != img[1].height) {
-    fprintf(stderr, "se_imgdiff: the images differ in size: %dx%d and %dx%d\n",
-            img[0].width, img[0].height, img[1].width, img[1].height);
-    sh_image_free(&img[0]);
-    sh_image_free(&img[1]);
-    return 2;
-  }
+  for (int k = 1; k < nimg; k++)
+    if (img[0].width != img[k].width || img[0].height != img[k].height) {
+      fprintf(stderr, "se_imgdiff: the images differ in size: %dx%d and %dx%d\n",
+              img[0].width, img[0].height, img[k].width, img[k].height);
+      for (int j = 0; j < nimg; j++) sh_image_free(&img[j]);
+      return 2;
+    }
+  const sh_image *mask = &img[nimg == 3 ? 2 : 0];
   int n = img[0].width * img[0].height;
   double peak = 0;
   for (int i = 0; i < n; i++) {
-    double r = pixel_mean(&img[0], i);
+    double r = pixel_mean(mask, i);
     if (r > peak) peak = r;
   }
   double *rel = malloc(sizeof *rel * (size_t)(n > 0 ? n : 1));
@@ -78,9 +85,10 @@ int main(int argc, char **argv) {
   int lit = 0;
   double sum_rel = 0, sum_ref = 0, sum_test = 0;
   for (int i = 0; i < n; i++) {
+    double m = pixel_mean(mask, i);
     double r = pixel_mean(&img[0], i), t = pixel_mean(&img[1], i);
-    if (!(r > frac * peak) || peak <= 0) continue;
-    double d = (t > r ? t - r : r - t) / r;
+    if (!(m > frac * peak) || peak <= 0) continue;
+    double d = (t > r ? t - r : r - t) / m;
     if (!(d == d)) d = 1e30; /* NaN in the test image */
     rel[lit++] = d;
     sum_rel += d;
@@ -98,14 +106,13 @@ int main(int argc, char **argv) {
     for (int y = sy / 2; y < h; y += sy) {
       for (int x = sx / 2; x < w; x += sx) {
         double r = pixel_mean(&img[0], y * w + x), t = pixel_mean(&img[1], y * w + x);
-        if (r > frac * peak) printf(" %5.2f", t / r);
+        if (pixel_mean(mask, y * w + x) > frac * peak && r > 0) printf(" %5.2f", t / r);
         else printf("    . ");
       }
       printf("\n");
     }
   }
   free(rel);
-  sh_image_free(&img[0]);
-  sh_image_free(&img[1]);
+  for (int k = 0; k < nimg; k++) sh_image_free(&img[k]);
   return 0;
 }
