@@ -15,7 +15,9 @@
 import json
 import math
 import os
+import shutil
 import sys
+import tempfile
 
 import bpy
 from mathutils import Matrix
@@ -410,15 +412,27 @@ def build(data, base_dir, opts):
         obj = new_object("light%d" % k, light, scene)
         obj.matrix_world = matrix(item.get("matrix"), what + ".matrix")
 
+    # Light maps: plain file names next to the data file. Blender reads a
+    # backslash in an image path as a directory separator, so each image is
+    # copied to a fresh temporary directory, loaded from there and packed.
     images = []
-    for k, item in enumerate(data.get("images", [])):
-        name = item.get("file")
-        # Only plain file names next to the data file are accepted.
-        if not isinstance(name, str) or os.path.basename(name) != name or name in ("", ".", ".."):
-            raise DataError("images[%d].file: expected a file name in the data file's directory" % k)
-        img = bpy.data.images.load(os.path.join(base_dir, name), check_existing=False)
-        img.colorspace_settings.name = "Non-Color"
-        images.append(img)
+    staging = tempfile.mkdtemp(prefix="scene_export_")
+    try:
+        for k, item in enumerate(data.get("images", [])):
+            name = item.get("file")
+            if not isinstance(name, str) or os.path.basename(name) != name or name in ("", ".", ".."):
+                raise DataError("images[%d].file: expected a file name in the data file's directory" % k)
+            copy = os.path.join(staging, "map%d.exr" % k)
+            try:
+                shutil.copyfile(os.path.join(base_dir, name), copy)
+            except OSError as e:
+                raise DataError("images[%d]: cannot read %s: %s" % (k, name, e))
+            img = bpy.data.images.load(copy, check_existing=False)
+            img.colorspace_settings.name = "Non-Color"
+            img.pack()
+            images.append(img)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
 
     materials = [surface_material(item, k) for k, item in enumerate(data.get("materials", []))]
     for k, item in enumerate(data.get("meshes", [])):
@@ -479,20 +493,32 @@ def main():
     except DataError as e:
         print("scene_export script: error: %s" % e, file=sys.stderr)
         sys.exit(2)
+    except Exception as e:  # Blender refused the data: report, never go on
+        print("scene_export script: error: cannot build the scene: %s: %s"
+              % (type(e).__name__, e), file=sys.stderr)
+        sys.exit(1)
+    # Blender reads a backslash in an output path as a directory separator:
+    # render into a fresh temporary directory, then copy the image next to
+    # its destination and rename it into place.
     out = opts["out"]
-    tmp = os.path.join(os.path.dirname(out), ".%s.tmp%d.exr" % (os.path.basename(out), os.getpid()))
+    staging = tempfile.mkdtemp(prefix="scene_export_")
+    tmp = os.path.join(os.path.dirname(out), ".%s.tmp%d" % (os.path.basename(out), os.getpid()))
     try:
-        scene.render.filepath = tmp
+        rendered = os.path.join(staging, "render.exr")
+        scene.render.filepath = rendered
         scene.render.use_file_extension = False
         bpy.ops.render.render(write_still=True)
-        if not os.path.exists(tmp):
+        if not os.path.exists(rendered):
             raise RuntimeError("Blender wrote no image")
+        shutil.copyfile(rendered, tmp)
         os.replace(tmp, out)
     except Exception as e:  # rendering or writing failed: leave nothing behind
         if os.path.exists(tmp):
             os.unlink(tmp)
         print("scene_export script: error: rendering failed: %s" % e, file=sys.stderr)
         sys.exit(1)
+    finally:
+        shutil.rmtree(staging, ignore_errors=True)
     print("scene_export script: wrote %s" % out)
 
 

@@ -325,10 +325,13 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   size_t name_len = strlen(base) - 3;
   if (name_len == 0)
     return sh_error_set(err, SH_ERR_ARG, "the Blender output '%s' has no name", py_path);
+  /* Side files (light maps) get a plain version of the name: Blender reads
+   * backslashes in image paths as directory separators. */
   char *name = malloc(name_len + 1);
   if (!name) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   memcpy(name, base, name_len);
   name[name_len] = '\0';
+  se_plain_name(name, name, name_len + 1);
   blend b = {scene, opt, notes, {0, 0, 0}, 0, name, py_path,
              (int)(base - py_path), out};
   se_bounding_sphere(scene, &b.center, &b.radius);

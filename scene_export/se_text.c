@@ -32,6 +32,16 @@ void se_pov_string(se_buf *b, const char *in) {
   se_buf_puts(b, "\"");
 }
 
+void se_plain_name(const char *in, char *out, size_t size) {
+  size_t n = 0;
+  for (; in[n] && n + 1 < size; n++) {
+    int c = (unsigned char)in[n];
+    out[n] = (char)(plain_char(c) && !(n == 0 && (c == '.' || c == '-')) ? c : '_');
+  }
+  if (n == 0 && size > 1) out[n++] = '_';
+  out[n] = '\0';
+}
+
 int se_is_plain_file_name(const char *name) {
   if (!name[0] || name[0] == '-' || name[0] == '.') return 0;
   for (const char *p = name; *p; p++)

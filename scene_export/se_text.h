@@ -32,6 +32,12 @@ void se_pov_string(se_buf *b, const char *in);
  * the names POV-Ray's .ini files and command line take without quoting. */
 int se_is_plain_file_name(const char *name);
 
+/* Writes into out (room for size bytes) `in` with every byte that
+ * se_is_plain_file_name rejects replaced by '_' (a leading '.' or '-' too),
+ * cut to size - 1 bytes; "_" if `in` is empty. For the names of the side
+ * files an export writes. */
+void se_plain_name(const char *in, char *out, size_t size);
+
 /* The last path component of `path` (a pointer into it). */
 const char *se_base_name(const char *path);
 

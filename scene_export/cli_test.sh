@@ -1,0 +1,137 @@
+#!/usr/bin/env bash
+# Command-line behaviour of scene_export: help; bad arguments, bad scenes and
+# refused --strict exports exit with status 2 and write nothing; good exports
+# write every file, the Blender script is the same bytes for every scene; and
+# a scene whose names and file paths hold quotes, backslashes, newlines and
+# Python code exports to a .pov that POV-Ray renders and to a Blender export
+# that renders without running any of it.
+#
+#   cli_test.sh SCENE_EXPORT SOURCE_DIR
+set -u
+tool=$1
+src=$2
+data=$src/scene_export/testdata
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+check() { # description, expected status, actual status
+  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
+}
+empty() { # description, directory: nothing may have been written there
+  if [ -n "$(ls -A "$2")" ]; then echo "FAIL: $1 wrote: $(ls -A "$2")"; fail=1; fi
+}
+
+"$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
+grep -q "usage: scene_export" "$dir/help" || { echo "FAIL: --help text"; fail=1; }
+rm "$dir/help"
+
+out=$dir/out
+mkdir "$out"
+"$tool" >/dev/null 2>&1; check "no arguments" 2 $?
+"$tool" "$data/point_medium.json" -o "$out/a.pov" 2>/dev/null; check "missing --to" 2 $?
+"$tool" "$data/point_medium.json" --to pov 2>/dev/null; check "missing -o" 2 $?
+"$tool" "$data/point_medium.json" --to maya -o "$out/a.pov" 2>/dev/null; check "bad --to" 2 $?
+"$tool" "$data/point_medium.json" --to pov -o "$out/a.pov" --quality best 2>/dev/null
+check "bad --quality" 2 $?
+"$tool" "$data/point_medium.json" --to pov -o "$out/a.pov" --bogus 2>/dev/null
+check "unknown option" 2 $?
+"$tool" "$data/point_medium.json" --to pov -o "$out/a.txt" 2>/dev/null; check "not .pov" 2 $?
+"$tool" "$data/point_medium.json" --to blender -o "$out/a.txt" 2>/dev/null; check "not .py" 2 $?
+"$tool" "$data/point_medium.json" --to pov -o "$out/a b.pov" 2>"$dir/err"
+check "unquotable POV-Ray name" 2 $?
+grep -q "must consist of letters" "$dir/err" || { echo "FAIL: name message: $(cat "$dir/err")"; fail=1; }
+"$tool" "$dir/missing.json" --to pov -o "$out/a.pov" 2>/dev/null; check "missing scene" 1 $?
+sed 's/"intensity"/"intensty"/' "$data/point_medium.json" >"$dir/typo.json"
+"$tool" "$dir/typo.json" --to pov -o "$out/a.pov" 2>"$dir/err"; check "misspelled key" 2 $?
+grep -q "typo.json:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
+  || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
+"$tool" "$data/point_medium.json" --to pov -o "$dir/nowhere/a.pov" 2>/dev/null
+check "missing output directory" 1 $?
+empty "failed exports" "$out"
+
+# --strict refuses approximations and writes nothing; exact exports pass.
+"$tool" "$data/phase_nishita_hazy.json" --to blender -o "$out/h.py" --strict 2>"$dir/err"
+check "--strict, Cycles without Nishita phases" 2 $?
+grep -q "strict.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: --strict message: $(cat "$dir/err")"; fail=1; }
+"$tool" "$data/everything.json" --to pov -o "$out/e.pov" --strict 2>/dev/null
+check "--strict, POV-Ray with a coloured highlight" 2 $?
+empty "refused exports" "$out"
+"$tool" "$data/phase_nishita_hazy.json" --to pov -o "$out/h.pov" --strict; check "--strict, exact" 0 $?
+"$tool" "$data/phase_nishita_hazy.json" --to blender -o "$out/h.py" 2>"$dir/err"
+check "approximation without --strict" 0 $?
+grep -q "warning:.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: no warning"; fail=1; }
+grep -q "Henyey-Greenstein" "$out/h.json" || { echo "FAIL: no note in the data"; fail=1; }
+
+# Good exports write every file; the script is one fixed file.
+"$tool" "$data/spot_gobo.json" --to pov -o "$out/g.pov"; check "pov export" 0 $?
+"$tool" "$data/spot_gobo.json" --to blender -o "$out/g.py"; check "blender export" 0 $?
+"$tool" "$data/spot_gobo.json" --to json -o "$out/g.json.json"; check "json export" 0 $?
+for f in h.pov h.ini h.py h.json g.pov g.ini g_map0.exr g.py g.json g_map0.exr g.json.json; do
+  [ -s "$out/$f" ] || { echo "FAIL: $f not written"; fail=1; }
+done
+cmp -s "$out/h.py" "$out/g.py" || { echo "FAIL: the Blender script differs between scenes"; fail=1; }
+cmp -s "$out/h.py" "$src/scene_export/blender_scene.py" \
+  || { echo "FAIL: the Blender script is not blender_scene.py"; fail=1; }
+ls "$out" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
+"$tool" "$out/g.json.json" --to pov -o "$out/g2.pov"; check "export of the normalised scene" 0 $?
+
+# The hostile scene: every user string holds a quote, a backslash, a
+# newline and Python code; the files live in such a directory too.
+evil=$'we"ird\\dir\n__import__(\'os\').system(\'touch pwned\')'
+mkdir -p "$dir/$evil"
+cp "$src/scenes/assets/gobo_dots.png" "$dir/$evil/gobo \"q\" \\ __import__('os').png"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' \
+  >"$dir/$evil/m\"e\\sh.obj"
+python3 - "$dir" "$evil" <<'PY'
+import json, sys
+d, evil = sys.argv[1], sys.argv[2]
+name = "glass\"\\\n__import__('os').system('touch pwned')"
+scene = {
+  "format": "shafts-scene", "version": 1,
+  "camera": {"position": [0, 1.5, 5], "look_at": [0, 1, 0], "fov_y_deg": 45,
+             "width": 32, "height": 24},
+  "medium": {"sigma_s": [0.1, 0.1, 0.1], "bounds": {"min": [-2, 0, -2], "max": [2, 3, 2]}},
+  "lights": [{"type": "spot", "position": [0, 2.8, 0], "direction": [0, -1, 0],
+              "intensity": [20, 20, 20], "outer_angle_deg": 25,
+              "light_map": {"image": "gobo \"q\" \\ __import__('os').png"}}],
+  "materials": {name: {"diffuse": [0.5, 0.5, 0.5], "transmit": [0.3, 0.3, 0.3]},
+                "__import__('os').system('touch pwned')": {"diffuse": [0.6, 0.6, 0.6]}},
+  "shapes": [{"type": "box", "material": "__import__('os').system('touch pwned')",
+              "min": [-2, -0.1, -2], "max": [2, 0, 2]},
+             {"type": "mesh", "material": name, "file": "m\"e\\sh.obj",
+              "transform": {"translate": [0, 1, 0], "scale": 0.5}}]}
+with open(d + "/" + evil + "/sc\"ene\\ '__import__'.json", "w") as f:
+    json.dump(scene, f)
+PY
+scene="$dir/$evil/sc\"ene\\ '__import__'.json"
+pov=$dir/pov
+mkdir "$pov"
+"$tool" "$scene" --to pov -o "$pov/evil.pov"; check "hostile scene to pov" 0 $?
+if command -v povray >/dev/null; then
+  (cd "$pov" && povray evil.ini >"$dir/povray.log" 2>&1); check "povray renders the hostile scene" 0 $?
+  [ -s "$pov/evil.exr" ] || { echo "FAIL: POV-Ray wrote no image"; tail -20 "$dir/povray.log"; fail=1; }
+else
+  echo "FAIL: povray is not installed"; fail=1
+fi
+# User text appears only in comments.
+grep -v '^ *//' "$pov/evil.pov" | grep -q -i 'import\|touch\|pwned' \
+  && { echo "FAIL: user text outside comments in the .pov"; fail=1; }
+
+blend=$dir/"bl\"end \\ dir"
+mkdir "$blend"
+"$tool" "$scene" --to blender -o "$blend/ev\"il \\ '__import__'.py"; check "hostile scene to blender" 0 $?
+cmp -s "$blend/ev\"il \\ '__import__'.py" "$src/scene_export/blender_scene.py" \
+  || { echo "FAIL: the hostile export's script is not the fixed script"; fail=1; }
+if command -v blender >/dev/null; then
+  (cd "$dir" && blender -b -P "$blend/ev\"il \\ '__import__'.py" -- --engine cycles \
+     --out "$blend/evil.exr" --samples 2 >"$dir/blender.log" 2>&1)
+  check "blender renders the hostile scene" 0 $?
+  [ -s "$blend/evil.exr" ] || { echo "FAIL: Blender wrote no image"; tail -20 "$dir/blender.log"; fail=1; }
+else
+  echo "FAIL: blender is not installed"; fail=1
+fi
+found=$(find "$dir" . -name pwned 2>/dev/null)
+[ -n "$found" ] && { echo "FAIL: the scene's text was executed: $found"; fail=1; }
+"$tool" "$scene" --to json -o "$dir/evil.json"; check "hostile scene to json" 0 $?
+"$tool" "$dir/evil.json" --to pov -o "$pov/again.pov"; check "hostile normalised scene reloads" 0 $?
+exit $fail
