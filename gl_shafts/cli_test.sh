@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# Command-line behaviour of gl_shafts: help, bad arguments and bad scenes
+# exit with status 2 and write nothing, a good render writes every output
+# and a statistics file with the time split and the counts, scene render
+# keys are defaults that options override.
+set -u
+tool=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+fail=0
+check() { # description, expected status, actual status
+  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
+}
+
+"$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
+grep -q "usage: gl_shafts" "$dir/help" || { echo "FAIL: --help text"; fail=1; }
+for opt in --planes --lattice --light-map-res --shadow-map-res --xi --jitter \
+           --no-jitter --exposure --stats --quiet; do
+  grep -q -- "$opt" "$dir/help" || { echo "FAIL: --help does not mention $opt"; fail=1; }
+done
+
+cat >"$dir/good.json" <<'JSON'
+{"format": "shafts-scene", "version": 1,
+ "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
+            "width": 32, "height": 24},
+ "medium": {"sigma_s": [0.1, 0.1, 0.1],
+            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
+ "lights": [{"type": "spot", "position": [0, 2.5, 0], "look_at": [0, 0, 0],
+             "intensity": [5, 5, 5], "outer_angle_deg": 30}],
+ "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
+             "u": [6, 0, 0], "v": [0, 0, -6]},
+            {"type": "sphere", "material": "floor", "center": [0, 1, 0], "radius": 0.3}],
+ "render": {"planes": 7, "lattice": [3, 4], "xi": "exact", "jitter": true}}
+JSON
+sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$dir/good.json" >"$dir/typo.json"
+printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
+
+run_bad() { # description, arguments...
+  local d=$1; shift
+  "$tool" "$@" >"$dir/out" 2>&1; check "$d" 2 $?
+  grep -q "gl_shafts" "$dir/out" || { echo "FAIL: $d: no message"; fail=1; }
+}
+run_bad "no arguments"
+run_bad "missing -o" "$dir/good.json"
+run_bad "bad extension" "$dir/good.json" -o "$dir/x.tga"
+run_bad "--planes 0" "$dir/good.json" -o "$dir/x.exr" --planes 0
+run_bad "--planes junk" "$dir/good.json" -o "$dir/x.exr" --planes 12x
+run_bad "--lattice 1 5" "$dir/good.json" -o "$dir/x.exr" --lattice 1 5
+run_bad "--lattice one value" "$dir/good.json" -o "$dir/x.exr" --lattice 5
+run_bad "--xi bogus" "$dir/good.json" -o "$dir/x.exr" --xi bogus
+run_bad "--shadow-map-res 0" "$dir/good.json" -o "$dir/x.exr" --shadow-map-res 0
+run_bad "--light-map-res 99999" "$dir/good.json" -o "$dir/x.exr" --light-map-res 99999
+run_bad "--exposure nan" "$dir/good.json" -o "$dir/x.exr" --exposure nan
+run_bad "unknown option" "$dir/good.json" -o "$dir/x.exr" --bogus
+run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
+"$tool" "$dir/typo.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "misspelled key" 2 $?
+grep -q "typo.json:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
+  || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
+"$tool" "$dir/truncated.json" -o "$dir/x.exr" -q 2>/dev/null; check "truncated" 2 $?
+"$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 1 $?
+[ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
+ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
+
+"$tool" "$dir/good.json" -o "$dir/a.exr" -o "$dir/a.png" --stats "$dir/a.json" -q
+check "good render" 0 $?
+for f in a.exr a.png a.json; do
+  [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail=1; }
+done
+for key in seconds shadow_seconds surface_seconds lattice_seconds plane_seconds \
+           readback_seconds setup_seconds planes fragments fragments_rasterized \
+           lattice_points shadow_maps lights_swept renderer; do
+  grep -q "\"$key\"" "$dir/a.json" || { echo "FAIL: stats key $key"; fail=1; }
+done
+# The scene's render keys are the defaults...
+grep -q '"planes_per_light": 7' "$dir/a.json" || { echo "FAIL: render.planes not used"; fail=1; }
+grep -q '"lattice_v": 4' "$dir/a.json" || { echo "FAIL: render.lattice not used"; fail=1; }
+grep -q '"xi": "exact"' "$dir/a.json" || { echo "FAIL: render.xi not used"; fail=1; }
+grep -q '"jitter": 1' "$dir/a.json" || { echo "FAIL: render.jitter not used"; fail=1; }
+# ...that options override.
+"$tool" "$dir/good.json" -o "$dir/b.exr" --stats "$dir/b.json" -q --planes 9 \
+  --lattice 5 6 --xi lattice --no-jitter --shadow-map-res 64 --light-map-res 8
+check "options" 0 $?
+for kv in '"planes_per_light": 9' '"lattice_u": 5' '"lattice_v": 6' '"xi": "lattice"' \
+          '"jitter": 0' '"shadow_map_res": 64' '"light_map_res": 8'; do
+  grep -q "$kv" "$dir/b.json" || { echo "FAIL: option not applied: $kv"; fail=1; }
+done
+# The same command gives the same image (pixels, not bytes: EXR headers
+# carry the time).
+"$tool" "$dir/good.json" -o "$dir/c.exr" -q
+idiff -fail 0 -failpercent 0 "$dir/a.exr" "$dir/c.exr" >/dev/null \
+  || { echo "FAIL: same command, different image"; fail=1; }
+exit $fail

@@ -1,0 +1,139 @@
+#include "gs_geometry.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "sh_tessellate.h"
+
+/* A growing array of vertices: position and normal, 6 floats each. */
+typedef struct vbuf {
+  float *v;
+  size_t n, cap;
+} vbuf;
+
+static int push(vbuf *b, sh_vec3 p, sh_vec3 n) {
+  if (b->n == b->cap) {
+    size_t cap = b->cap ? 2 * b->cap : 4096;
+    float *v = realloc(b->v, cap * 6 * sizeof *v);
+    if (!v) return 0;
+    b->v = v;
+    b->cap = cap;
+  }
+  float *o = b->v + 6 * b->n++;
+  o[0] = (float)p.x;
+  o[1] = (float)p.y;
+  o[2] = (float)p.z;
+  o[3] = (float)n.x;
+  o[4] = (float)n.y;
+  o[5] = (float)n.z;
+  return 1;
+}
+
+static sh_vec3 vertex(const sh_mesh *m, unsigned i) {
+  const float *p = m->positions + 3 * (size_t)i;
+  return sh_v3(p[0], p[1], p[2]);
+}
+
+/* The tessellation error for a curved shape of radius r around object-space
+ * point c: a quarter of a pixel's footprint at its nearest distance. */
+static double curve_error(const sh_shape *s, const gs__view *view, sh_vec3 c,
+                          double r) {
+  sh_vec3 w = sh_xform_point(&s->xform, c);
+  double scale = sh_length(sh_xform_vector(&s->xform, sh_v3(1, 0, 0)));
+  scale = fmax(scale, sh_length(sh_xform_vector(&s->xform, sh_v3(0, 1, 0))));
+  scale = fmax(scale, sh_length(sh_xform_vector(&s->xform, sh_v3(0, 0, 1))));
+  double dist = sh_length(sh_sub(w, view->frame.origin)) - r * scale;
+  double pixel = 2.0 * view->frame.tan_half_y / view->height;
+  double e = 0.25 * pixel * fmax(dist, 0.0) / scale;
+  return fmax(e, 1e-4 * r);
+}
+
+/* The object-space shading normal of a triangle's vertex: exact for a
+ * sphere and a cylinder's wall; 0 for flat shading. */
+static sh_vec3 smooth_normal(const sh_shape *s, sh_vec3 p, sh_vec3 face_n) {
+  if (s->type == SH_SHAPE_SPHERE) return sh_normalize(sh_sub(p, s->center));
+  if (s->type == SH_SHAPE_CYLINDER) {
+    sh_vec3 ax = sh_normalize(sh_sub(s->top, s->base));
+    if (fabs(sh_dot(face_n, ax)) > 0.999) return sh_v3s(0); /* a cap */
+    sh_vec3 d = sh_sub(p, s->base);
+    return sh_normalize(sh_madd(d, ax, -sh_dot(d, ax)));
+  }
+  return sh_v3s(0);
+}
+
+sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
+                             gs__geometry *g, sh_error *err) {
+  memset(g, 0, sizeof *g);
+  g->shape = calloc((size_t)(scene->nshapes ? scene->nshapes : 1), sizeof *g->shape);
+  if (!g->shape) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  vbuf b = {0};
+  sh_status st = SH_OK;
+  for (int i = 0; i < scene->nshapes && st == SH_OK; i++) {
+    const sh_shape *s = &scene->shapes[i];
+    double e = 1.0;
+    if (s->type == SH_SHAPE_SPHERE)
+      e = curve_error(s, view, s->center, s->radius);
+    else if (s->type == SH_SHAPE_CYLINDER)
+      e = curve_error(s, view, sh_scale(sh_add(s->base, s->top), 0.5), s->radius);
+    sh_mesh m = {0};
+    st = sh_mesh_tessellate(s, e, &m, err);
+    if (st != SH_OK) break;
+    gs__shape_draw *d = &g->shape[i];
+    d->first = (int)b.n;
+    d->material = s->material;
+    d->bmin = sh_v3s(INFINITY);
+    d->bmax = sh_v3s(-INFINITY);
+    d->convex = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
+                s->type == SH_SHAPE_QUAD ||
+                (s->type == SH_SHAPE_CYLINDER && s->caps);
+    for (int t = 0; t < m.ntris && st == SH_OK; t++) {
+      sh_vec3 o[3], w[3];
+      for (int k = 0; k < 3; k++) {
+        o[k] = vertex(&m, m.indices[3 * t + k]);
+        w[k] = sh_xform_point(&s->xform, o[k]);
+      }
+      sh_vec3 fn = sh_cross(sh_sub(w[1], w[0]), sh_sub(w[2], w[0]));
+      if (sh_length(fn) == 0) continue; /* degenerate */
+      fn = sh_normalize(fn);
+      sh_vec3 on = sh_normalize(sh_cross(sh_sub(o[1], o[0]), sh_sub(o[2], o[0])));
+      for (int k = 0; k < 3; k++) {
+        sh_vec3 n = smooth_normal(s, o[k], on);
+        n = sh_is_black(n) ? fn : sh_normalize(sh_xform_normal(&s->inv, n));
+        if (!push(&b, w[k], n)) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+        d->bmin = sh_vmin(d->bmin, w[k]);
+        d->bmax = sh_vmax(d->bmax, w[k]);
+      }
+      g->triangles++;
+    }
+    d->count = (int)b.n - d->first;
+    sh_mesh_free(&m);
+    if (b.n > (size_t)1 << 30)
+      st = sh_error_set(err, SH_ERR_ARG, "the scene has too many triangles for GL");
+  }
+  g->nshapes = scene->nshapes;
+  g->nverts = (int)b.n;
+  if (st == SH_OK) {
+    glCreateVertexArrays(1, &g->vao);
+    glCreateBuffers(1, &g->vbo);
+    glNamedBufferData(g->vbo, (GLsizeiptr)(b.n * 6 * sizeof(float)), b.v,
+                      GL_STATIC_DRAW);
+    glVertexArrayVertexBuffer(g->vao, 0, g->vbo, 0, 6 * sizeof(float));
+    for (GLuint a = 0; a < 2; a++) {
+      glEnableVertexArrayAttrib(g->vao, a);
+      glVertexArrayAttribFormat(g->vao, a, 3, GL_FLOAT, GL_FALSE,
+                                a * 3 * sizeof(float));
+      glVertexArrayAttribBinding(g->vao, a, 0);
+    }
+    st = gs__gl_check("uploading the scene's triangles", err);
+  }
+  free(b.v);
+  if (st != SH_OK) gs__geometry_free(g);
+  return st;
+}
+
+void gs__geometry_free(gs__geometry *g) {
+  if (g->vbo) glDeleteBuffers(1, &g->vbo);
+  if (g->vao) glDeleteVertexArrays(1, &g->vao);
+  free(g->shape);
+  memset(g, 0, sizeof *g);
+}

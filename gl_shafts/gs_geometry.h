@@ -1,0 +1,35 @@
+/* The scene's surfaces as GL triangles: every shape tessellated
+ * (sh_tessellate.h), moved to world space, with the normals the reference
+ * renderer shades with: the exact normals of spheres and cylinder walls
+ * (interpolated across the tessellation), the flat geometric normal of each
+ * triangle for everything else. */
+#ifndef GS_GEOMETRY_H
+#define GS_GEOMETRY_H
+
+#include "gs_gl.h"
+#include "gs_view.h"
+#include "sh_scene.h"
+
+typedef struct gs__shape_draw {
+  int first, count;    /* vertex range in the buffer */
+  int material;        /* index into the scene's materials */
+  sh_vec3 bmin, bmax;  /* world bounds */
+  int convex;          /* a closed convex shape or a flat one: cannot shadow itself */
+} gs__shape_draw;
+
+typedef struct gs__geometry {
+  GLuint vao, vbo;     /* position (location 0) and normal (1), 3 floats each */
+  int nverts, nshapes;
+  gs__shape_draw *shape;
+  long triangles;
+} gs__geometry;
+
+/* Tessellates and uploads the scene's shapes. Spheres and cylinders get a
+ * tessellation error of a quarter pixel at their distance from the camera
+ * (never below 1e-4 of their radius). */
+sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
+                             gs__geometry *g, sh_error *err);
+
+void gs__geometry_free(gs__geometry *g);
+
+#endif

@@ -1,0 +1,319 @@
+#include "gs_render.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gs_context.h"
+#include "gs_geometry.h"
+#include "gs_gl.h"
+#include "gs_lattice.h"
+#include "gs_lightvol.h"
+#include "gs_program.h"
+#include "gs_shadow.h"
+#include "gs_surface.h"
+#include "gs_sweep.h"
+#include "gs_target.h"
+#include "gs_view.h"
+#include "sh_progress.h"
+
+struct gs_renderer {
+  const sh_scene *scene;
+  gs_options opt;
+  gs__context *ctx;
+  gs__view view;
+  gs__programs progs;
+  gs__geometry geom;
+  gs__target target;
+  gs__sweep sweep;
+  int nlights;
+  GLuint *maps;               /* light-map textures, 0 if none */
+  gs__light_setup *lights;
+  gs__shadow_map *shadows;
+  gs__lattice *lattices;
+  float *readback;            /* width * height * 4 */
+};
+
+gs_options gs_options_defaults(const sh_scene *scene) {
+  gs_options o;
+  memset(&o, 0, sizeof o);
+  const sh_render_settings *r = &scene->render;
+  o.planes = r->planes > 0 ? r->planes : GS_DEFAULT_PLANES;
+  o.lattice_u = r->lattice_u > 0 ? r->lattice_u : GS_DEFAULT_LATTICE;
+  o.lattice_v = r->lattice_v > 0 ? r->lattice_v : GS_DEFAULT_LATTICE;
+  o.light_map_res = r->light_map_res > 0 ? r->light_map_res : 0;
+  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : GS_DEFAULT_SHADOW_MAP_RES;
+  o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
+  o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
+  o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
+  return o;
+}
+
+sh_status gs_options_check(const gs_options *o, sh_error *err) {
+  if (o->planes < 1 || o->planes > 100000)
+    return sh_error_set(err, SH_ERR_ARG, "planes must be in [1, 100000], not %d",
+                        o->planes);
+  if (o->lattice_u < 2 || o->lattice_u > 4096 || o->lattice_v < 2 ||
+      o->lattice_v > 4096)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the lattice must have 2 to 4096 points a side, not %dx%d",
+                        o->lattice_u, o->lattice_v);
+  if (o->light_map_res < 0 || o->light_map_res > 16384)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "light_map_res must be in [1, 16384] (or 0: native), not %d",
+                        o->light_map_res);
+  if (o->shadow_map_res < 1 || o->shadow_map_res > 16384)
+    return sh_error_set(err, SH_ERR_ARG, "shadow_map_res must be in [1, 16384], not %d",
+                        o->shadow_map_res);
+  if (o->xi != SH_XI_LATTICE && o->xi != SH_XI_EXACT)
+    return sh_error_set(err, SH_ERR_ARG, "xi must be lattice or exact");
+  if (o->jitter != 0 && o->jitter != 1)
+    return sh_error_set(err, SH_ERR_ARG, "jitter must be 0 or 1");
+  if (!(o->sub_angle_deg > 0 && o->sub_angle_deg <= 180))
+    return sh_error_set(err, SH_ERR_ARG, "sub_angle must be in (0, 180] degrees, not %g",
+                        o->sub_angle_deg);
+  return SH_OK;
+}
+
+/* Checks the options against the GL implementation's limits. */
+static sh_status check_limits(const gs_renderer *r, sh_error *err) {
+  GLint max2d = 0, max3d = 0, maxcube = 0, maxview[2] = {0, 0};
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max2d);
+  glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &max3d);
+  glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxcube);
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxview);
+  const gs_options *o = &r->opt;
+  const sh_camera *c = &r->scene->camera;
+  if (c->width > max2d || c->height > max2d || c->width > maxview[0] ||
+      c->height > maxview[1])
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the image (%dx%d) is larger than this GL renders (%dx%d)",
+                        c->width, c->height, maxview[0] < max2d ? maxview[0] : max2d,
+                        maxview[1] < max2d ? maxview[1] : max2d);
+  if (o->shadow_map_res > max2d || o->shadow_map_res > maxcube)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "shadow_map_res %d is larger than this GL allows (%d)",
+                        o->shadow_map_res, max2d < maxcube ? max2d : maxcube);
+  if (o->light_map_res > max2d)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "light_map_res %d is larger than this GL allows (%d)",
+                        o->light_map_res, max2d);
+  if (o->xi == SH_XI_LATTICE &&
+      (o->lattice_u > max3d || o->lattice_v > max3d || o->planes + 1 > max3d))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "with xi on the lattice, the lattice (%dx%d) and planes "
+                        "+ 1 (%d) must be at most %d, this GL's largest 3D "
+                        "texture; use fewer planes or xi exact",
+                        o->lattice_u, o->lattice_v, o->planes + 1, max3d);
+  for (int i = 0; i < r->scene->nlights; i++) {
+    const sh_light *l = &r->scene->lights[i];
+    if (l->has_map && o->light_map_res == 0 &&
+        (l->map.width > max2d || l->map.height > max2d))
+      return sh_error_set(err, SH_ERR_ARG,
+                          "light %d's light map (%dx%d) is larger than this GL "
+                          "allows (%d); give a light_map_res",
+                          i, l->map.width, l->map.height, max2d);
+  }
+  return SH_OK;
+}
+
+/* The light map as a float texture, at its own size or resampled to R x R
+ * bilinearly (sh_image_lookup), sampled bilinearly with edge clamping as
+ * sh_light_map_value samples it. */
+static sh_status upload_map(const sh_light *l, int res, GLuint *out, sh_error *err) {
+  const sh_image *img = &l->map;
+  int w = res ? res : img->width, h = res ? res : img->height;
+  const float *data = img->rgb;
+  float *tmp = NULL;
+  if (res) {
+    tmp = malloc((size_t)w * h * 3 * sizeof *tmp);
+    if (!tmp) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    for (int y = 0; y < h; y++)
+      for (int x = 0; x < w; x++)
+        sh_image_lookup(img, (x + 0.5) / w, (y + 0.5) / h, tmp + 3 * ((size_t)y * w + x));
+    data = tmp;
+  }
+  GLuint t;
+  glCreateTextures(GL_TEXTURE_2D, 1, &t);
+  glTextureStorage2D(t, 1, GL_RGB32F, w, h);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  /* Row 0 (the image's top) at t = 0, as sh_image_lookup reads it. */
+  glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, data);
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  free(tmp);
+  *out = t;
+  return gs__gl_check("uploading a light map", err);
+}
+
+sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
+                             gs_renderer **out, sh_error *err) {
+  *out = NULL;
+  sh_status st = gs_options_check(opt, err);
+  if (st != SH_OK) return st;
+  gs_renderer *r = calloc(1, sizeof *r);
+  if (!r) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  r->scene = scene;
+  r->opt = *opt;
+  r->nlights = scene->nlights;
+  size_t nl = (size_t)(scene->nlights ? scene->nlights : 1);
+  r->maps = calloc(nl, sizeof *r->maps);
+  r->lights = calloc(nl, sizeof *r->lights);
+  r->shadows = calloc(nl, sizeof *r->shadows);
+  r->lattices = calloc(nl, sizeof *r->lattices);
+  r->readback = malloc((size_t)scene->camera.width * scene->camera.height * 4 *
+                       sizeof *r->readback);
+  if (!r->maps || !r->lights || !r->shadows || !r->lattices || !r->readback) {
+    gs_renderer_free(r);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  st = gs__context_create(&r->ctx, err);
+  if (st == SH_OK) st = check_limits(r, err);
+  gs__view_init(&r->view, scene);
+  if (st == SH_OK) st = gs__geometry_build(scene, &r->view, &r->geom, err);
+  if (st == SH_OK)
+    st = gs__target_create(&r->target, scene->camera.width, scene->camera.height, err);
+  if (st == SH_OK) st = gs__sweep_init(&r->sweep, err);
+  for (int i = 0; i < scene->nlights && st == SH_OK; i++)
+    if (scene->lights[i].has_map)
+      st = upload_map(&scene->lights[i], opt->light_map_res, &r->maps[i], err);
+  if (st != SH_OK) {
+    gs_renderer_free(r);
+    return st;
+  }
+  *out = r;
+  return SH_OK;
+}
+
+/* Waits for GL and returns the time since *t, resetting it. */
+static double lap(double *t) {
+  glFinish();
+  double now = sh_seconds(), d = now - *t;
+  *t = now;
+  return d;
+}
+
+static void to_rgb(const float *rgba, int w, int h, float *rgb) {
+  /* GL's rows run bottom to top. */
+  for (int y = 0; y < h; y++) {
+    const float *src = rgba + 4 * (size_t)(h - 1 - y) * w;
+    float *dst = rgb + 3 * (size_t)y * w;
+    for (int x = 0; x < w; x++) {
+      dst[3 * x] = src[4 * x];
+      dst[3 * x + 1] = src[4 * x + 1];
+      dst[3 * x + 2] = src[4 * x + 2];
+    }
+  }
+}
+
+sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
+                           sh_error *err) {
+  gs_stats s;
+  memset(&s, 0, sizeof s);
+  const sh_scene *scene = r->scene;
+  const gs_options *o = &r->opt;
+  sh_status st = gs__context_make_current(r->ctx, err);
+  if (st != SH_OK) return st;
+  double start = sh_seconds(), t = start;
+
+  /* Lights: their volumes and shadow maps. */
+  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+    gs__light_setup_free(&r->lights[i]);
+    st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
+    if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
+      st = gs__shadow_render(&r->shadows[i], &r->lights[i], o->shadow_map_res,
+                             &r->geom, &r->progs, err);
+      s.shadow_maps++;
+    }
+  }
+  if (st == SH_OK) s.shadow_seconds = lap(&t);
+
+  if (st == SH_OK)
+    st = gs__surface_render(scene, &r->view, &r->geom, r->lights, r->shadows,
+                            r->maps, &r->target, &r->progs, err);
+  if (st == SH_OK) s.surface_seconds = lap(&t);
+
+  gs__sweep_counts counts = {0, 0, 0};
+  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+    const gs__light_setup *ls = &r->lights[i];
+    if (!ls->vol->nfaces) continue;
+    s.lights_swept++;
+    double map[6] = {0, 0, 0, 0, 0, 0};
+    gs__sweep_job job = {scene, &r->view, ls, &r->shadows[i], r->maps[i],
+                         NULL, map, o->planes, o->jitter,
+                         o->sub_angle_deg * SH_PI / 180.0};
+    if (o->xi == SH_XI_LATTICE) {
+      st = gs__lattice_eval(&r->lattices[i], scene, &r->view, ls, o->lattice_u,
+                            o->lattice_v, o->planes, map, err);
+      s.lattice_points += (long)o->lattice_u * o->lattice_v * (o->planes + 1);
+      job.lattice = &r->lattices[i];
+      s.lattice_seconds += lap(&t);
+    }
+    if (st == SH_OK)
+      st = gs__sweep_light(&r->sweep, &job, &r->target, &r->progs, &counts, err);
+    s.plane_seconds += lap(&t);
+  }
+  s.planes = counts.planes;
+  s.fragments = counts.fragments;
+  s.fragments_rasterized = counts.fragments_rasterized;
+
+  if (st == SH_OK) {
+    int w = r->target.width, h = r->target.height;
+    glBindFramebuffer(GL_FRAMEBUFFER, r->target.fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, r->readback);
+    st = gs__gl_check("reading the image back", err);
+    if (st == SH_OK) to_rgb(r->readback, w, h, rgb);
+    s.readback_seconds = lap(&t);
+  }
+  s.seconds = sh_seconds() - start;
+  s.triangles = r->geom.triangles;
+  s.width = r->target.width;
+  s.height = r->target.height;
+  snprintf(s.renderer, sizeof s.renderer, "%s", gs__context_renderer(r->ctx));
+  if (stats) *stats = s;
+  return st;
+}
+
+void gs_renderer_free(gs_renderer *r) {
+  if (!r) return;
+  if (r->ctx && gs__context_make_current(r->ctx, NULL) == SH_OK) {
+    for (int i = 0; i < r->nlights; i++) {
+      if (r->maps && r->maps[i]) glDeleteTextures(1, &r->maps[i]);
+      if (r->shadows) gs__shadow_free(&r->shadows[i]);
+      if (r->lattices) gs__lattice_free(&r->lattices[i]);
+    }
+    gs__sweep_free(&r->sweep);
+    gs__target_free(&r->target);
+    gs__geometry_free(&r->geom);
+    gs__programs_free(&r->progs);
+  }
+  if (r->lights)
+    for (int i = 0; i < r->nlights; i++) gs__light_setup_free(&r->lights[i]);
+  gs__context_free(r->ctx);
+  free(r->maps);
+  free(r->lights);
+  free(r->shadows);
+  free(r->lattices);
+  free(r->readback);
+  free(r);
+}
+
+sh_status gs_render(const sh_scene *scene, const gs_options *opt,
+                    sh_image *out, gs_stats *stats, sh_error *err) {
+  double start = sh_seconds();
+  gs_renderer *r = NULL;
+  sh_status st = gs_renderer_create(scene, opt, &r, err);
+  if (st != SH_OK) return st;
+  double setup = sh_seconds() - start;
+  st = sh_image_alloc(out, scene->camera.width, scene->camera.height, err);
+  if (st == SH_OK) {
+    st = gs_renderer_draw(r, out->rgb, stats, err);
+    if (st != SH_OK) sh_image_free(out);
+  }
+  if (st == SH_OK && stats) stats->setup_seconds = setup;
+  gs_renderer_free(r);
+  return st;
+}

@@ -1,0 +1,113 @@
+/* gl_shafts: the plane-sweep renderer of Dobashi, Yamamoto and Nishita
+ * (2000), "Interactive Rendering Method for Displaying Shafts of Light", on
+ * OpenGL 4.5 through OSMesa (llvmpipe: the CPU, no GPU needed).
+ *
+ * The image is the radiance of docs/scene-format.md: surfaces shaded as the
+ * reference renderer shades them (Lambert and Phong with shadow-map
+ * shadows, emission, ambient), attenuated by the medium towards the eye,
+ * plus the light the medium scatters once towards the eye, summed over
+ * virtual planes parallel to the screen (section 5 of the paper): the
+ * scattering term xi on an nu x nv lattice per plane (or per fragment),
+ * times the light's pattern (spot profile and light map, or a window's
+ * pattern), times its shadow-map visibility, accumulated in 32-bit float.
+ * docs/gl_shafts.md describes the method as implemented, with measurements.
+ *
+ * Limitations: no mirror reflection and no transmission: the `reflect`,
+ * `transmit` and `ior` of materials are ignored (semitransparent surfaces
+ * are drawn opaque and cast full shadows). Shadows are shadow-map shadows
+ * (bilinear comparison: edges are a texel soft).
+ *
+ * Library calls never exit or abort: they return an sh_status and fill an
+ * sh_error (GL errors, shader compile errors and OSMesa failures are
+ * SH_ERR_DEVICE). A renderer uses one OSMesa context, current on the
+ * calling thread during each call; use a renderer from one thread at a
+ * time. */
+#ifndef GS_RENDER_H
+#define GS_RENDER_H
+
+#include "sh_error.h"
+#include "sh_image.h"
+#include "sh_scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Rendering settings. gs_options_defaults fills them from the scene's
+ * render object, with the built-in defaults below for keys it lacks. */
+typedef struct gs_options {
+  int planes;               /* virtual planes per light, 1..100000 */
+  int lattice_u, lattice_v; /* lattice points per plane, each 2..4096 */
+  int light_map_res;        /* 0: light maps at their own size; else
+                               resampled to R x R, 1..16384 */
+  int shadow_map_res;       /* shadow-map size in texels, 1..16384 */
+  sh_xi_mode xi;            /* SH_XI_LATTICE (the seed's) or SH_XI_EXACT */
+  int jitter;               /* 1: per-pixel jitter of the sample depths */
+  double sub_angle_deg;     /* point and spot lights: a plane's fragment
+                               takes one sample per this angle (degrees)
+                               its part of the ray subtends at the light,
+                               so rays passing near a light are sampled
+                               finely; (0, 180] */
+} gs_options;
+
+/* The built-in defaults, chosen by measurement (docs/gl_shafts.md). */
+#define GS_DEFAULT_PLANES 100
+#define GS_DEFAULT_LATTICE 20
+#define GS_DEFAULT_SHADOW_MAP_RES 1024
+#define GS_DEFAULT_XI SH_XI_LATTICE
+#define GS_DEFAULT_JITTER 0
+#define GS_DEFAULT_SUB_ANGLE_DEG 1.0
+
+/* The defaults, overridden by the scene's render keys that are given. */
+gs_options gs_options_defaults(const sh_scene *scene);
+
+/* SH_ERR_ARG with a message naming the option if a value is out of range. */
+sh_status gs_options_check(const gs_options *opt, sh_error *err);
+
+/* Where the time of a frame went, and how much was drawn. */
+typedef struct gs_stats {
+  double seconds;          /* the frame: everything below together */
+  double shadow_seconds;   /* working out the lights' volumes, shadow maps */
+  double surface_seconds;  /* surfaces and background */
+  double lattice_seconds;  /* evaluating and uploading xi on the lattices */
+  double plane_seconds;    /* the sweep: intervals and planes */
+  double readback_seconds; /* reading the image back from GL */
+  double setup_seconds;    /* gs_render only: creating the context,
+                              uploading the scene, compiling shaders
+                              (not in `seconds`) */
+  int lights_swept;        /* lights whose lit volume the camera sees */
+  int shadow_maps;         /* shadow maps rendered */
+  long planes;             /* planes drawn, over all lights */
+  long lattice_points;     /* xi evaluations on the CPU */
+  double fragments;        /* plane fragments that added light */
+  double fragments_rasterized; /* pixels the planes' polygons cover */
+  long triangles;          /* surface triangles */
+  int width, height;
+  char renderer[128];      /* GL_RENDERER */
+} gs_stats;
+
+typedef struct gs_renderer gs_renderer;
+
+/* Creates a renderer for a scene, which must outlive it: a GL context, the
+ * scene's triangles and light maps uploaded. The options are copied. */
+sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
+                             gs_renderer **out, sh_error *err);
+
+/* Renders one frame into rgb: width * height * 3 floats (the camera's
+ * size), linear radiance, row-major from the top-left pixel (as
+ * sh_image). `stats` may be NULL. */
+sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
+                           sh_error *err);
+
+/* Frees the renderer and its context; NULL is allowed. */
+void gs_renderer_free(gs_renderer *r);
+
+/* Renders `scene` into `out`, which the call allocates at the camera's size
+ * (caller frees with sh_image_free): create, draw, free. */
+sh_status gs_render(const sh_scene *scene, const gs_options *opt,
+                    sh_image *out, gs_stats *stats, sh_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

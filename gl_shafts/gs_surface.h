@@ -1,0 +1,30 @@
+/* The surfaces' pass: every visible surface shaded as the reference shades
+ * it (emission + ambient * diffuse + per light Lambert and Phong terms with
+ * the light's transmittance and shadow-map visibility), attenuated by the
+ * medium towards the eye, and the background, attenuated likewise, where no
+ * surface is seen. One pass per light, added; the first also writes the
+ * depth buffer and the view depth the sweep reads.
+ *
+ * Limitation: surfaces are not mirrors and are not see-through here; the
+ * `reflect`, `transmit` and `ior` of materials are ignored (gs_render.h). */
+#ifndef GS_SURFACE_H
+#define GS_SURFACE_H
+
+#include "gs_geometry.h"
+#include "gs_lightvol.h"
+#include "gs_program.h"
+#include "gs_shadow.h"
+#include "gs_target.h"
+#include "gs_view.h"
+#include "sh_scene.h"
+
+/* Light i's setup is lights[i], its shadow map shadows[i] (used if its
+ * setup asks for one) and its light map texture maps[i] (0 if none). */
+sh_status gs__surface_render(const sh_scene *scene, const gs__view *view,
+                             const gs__geometry *geom,
+                             const gs__light_setup *lights,
+                             const gs__shadow_map *shadows, const GLuint *maps,
+                             const gs__target *target, gs__programs *progs,
+                             sh_error *err);
+
+#endif

@@ -1,0 +1,189 @@
+#include "gs_sweep.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gs_params.h"
+
+sh_status gs__sweep_init(gs__sweep *sw, sh_error *err) {
+  memset(sw, 0, sizeof *sw);
+  glCreateVertexArrays(1, &sw->vao);
+  glCreateBuffers(1, &sw->vbo);
+  glVertexArrayVertexBuffer(sw->vao, 0, sw->vbo, 0, 5 * sizeof(float));
+  glEnableVertexArrayAttrib(sw->vao, 0);
+  glVertexArrayAttribFormat(sw->vao, 0, 4, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(sw->vao, 0, 0);
+  glEnableVertexArrayAttrib(sw->vao, 1);
+  glVertexArrayAttribFormat(sw->vao, 1, 1, GL_FLOAT, GL_FALSE, 4 * sizeof(float));
+  glVertexArrayAttribBinding(sw->vao, 1, 0);
+  glCreateQueries(GL_SAMPLES_PASSED, 1, &sw->query);
+  return gs__gl_check("creating the sweep's buffers", err);
+}
+
+static int reserve_slabs(gs__sweep *sw, size_t n) {
+  if (n <= sw->scap) return 1;
+  GLint *f = realloc(sw->first, n * sizeof *f);
+  if (!f) return 0;
+  sw->first = f;
+  GLsizei *c = realloc(sw->count, n * sizeof *c);
+  if (!c) return 0;
+  sw->count = c;
+  sw->scap = n;
+  return 1;
+}
+
+static int reserve_verts(gs__sweep *sw, size_t n) {
+  if (n <= sw->vcap) return 1;
+  if (n < 2 * sw->vcap) n = 2 * sw->vcap;
+  float *v = realloc(sw->verts, n * 5 * sizeof *v);
+  if (!v) return 0;
+  sw->verts = v;
+  sw->vcap = n;
+  return 1;
+}
+
+/* The screen polygons of the slabs: the convex hull of the projection of
+ * the lit volume's part between the slab's planes. Returns the number of
+ * slabs with a polygon; adds their areas in pixels to *pixels. */
+static int build_slabs(gs__sweep *sw, const gs__sweep_job *job, double *pixels) {
+  enum { MAXPTS = 4 * GS__POLY_MAX_FACES * GS__POLY_MAX_FACE_VERTS };
+  const gs__light_setup *ls = job->light;
+  const gs__view *view = job->view;
+  sh_vec3 *pts = malloc(MAXPTS * sizeof *pts);
+  double(*xy)[2] = malloc(MAXPTS * sizeof *xy);
+  double(*hull)[2] = malloc(2 * MAXPTS * sizeof *hull);
+  int nslabs = 0;
+  size_t nv = 0;
+  if (!pts || !xy || !hull) goto done;
+  sh_vec3 fwd = view->frame.forward;
+  double base = sh_dot(fwd, view->frame.origin);
+  double dz = (ls->zmax - ls->zmin) / job->planes;
+  for (int k = 0; k < job->planes; k++) {
+    double za = ls->zmin + k * dz, zb = k + 1 == job->planes ? ls->zmax : za + dz;
+    int n = gs__poly_slab_points(ls->vol, fwd, base + za, base + zb, pts, MAXPTS);
+    for (int i = 0; i < n; i++) gs__view_ndc(view, pts[i], &xy[i][0], &xy[i][1]);
+    int h = gs__hull2d(xy, n, hull);
+    if (h < 3) continue;
+    if (!reserve_verts(sw, nv + (size_t)h)) {
+      nslabs = -1;
+      goto done;
+    }
+    sw->first[nslabs] = (GLint)nv;
+    sw->count[nslabs] = h;
+    double area = 0;
+    for (int i = 0; i < h; i++) {
+      float *o = sw->verts + 5 * nv++;
+      o[0] = (float)hull[i][0];
+      o[1] = (float)hull[i][1];
+      o[2] = (float)za;
+      o[3] = (float)zb;
+      o[4] = (float)k;
+      int j = (i + 1) % h;
+      area += hull[i][0] * hull[j][1] - hull[j][0] * hull[i][1];
+    }
+    *pixels += 0.5 * area * 0.25 * view->width * view->height;
+    nslabs++;
+  }
+done:
+  free(pts);
+  free(xy);
+  free(hull);
+  if (nslabs > 0)
+    glNamedBufferData(sw->vbo, (GLsizeiptr)(nv * 5 * sizeof(float)), sw->verts,
+                      GL_STREAM_DRAW);
+  return nslabs;
+}
+
+static sh_status interval_pass(const gs__sweep_job *job, const gs__target *t,
+                               gs__programs *progs, sh_error *err) {
+  const gs__light_setup *ls = job->light;
+  char defs[512];
+  gs__defines(defs, sizeof defs, job->scene, ls, "");
+  GLuint prog;
+  sh_status st = gs__program_get(progs, &gs__glsl_screen_vert,
+                                 &gs__glsl_interval_frag, defs, &prog, err);
+  if (st != SH_OK) return st;
+  glUseProgram(prog);
+  gs__set_view_uniforms(prog, job->view, job->scene);
+  gs__set_light_uniforms(prog, ls);
+  gs__uniform_f(prog, "u_depth", 0.0);
+  glBindFramebuffer(GL_FRAMEBUFFER, t->interval_fbo);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindTextureUnit(5, t->lindepth);
+  /* The light's screen rectangle, a pixel wider on every side; the planes
+   * never leave it, so the rest of the texture may hold other lights'. */
+  double px = 2.0 / t->width, py = 2.0 / t->height;
+  float x0 = (float)fmax(ls->rect[0] - px, -1), y0 = (float)fmax(ls->rect[1] - py, -1);
+  float x1 = (float)fmin(ls->rect[2] + px, 1), y1 = (float)fmin(ls->rect[3] + py, 1);
+  const float rect[8] = {x0, y0, x1, y0, x1, y1, x0, y1};
+  gs__target_draw_polygon(t, rect, 4);
+  return gs__gl_check("computing the lit intervals", err);
+}
+
+sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
+                          const gs__target *t, gs__programs *progs,
+                          gs__sweep_counts *counts, sh_error *err) {
+  const gs__light_setup *ls = job->light;
+  if (!ls->vol->nfaces) return SH_OK;
+  if (!reserve_slabs(sw, (size_t)job->planes))
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory for the planes");
+  double pixels = 0;
+  int nslabs = build_slabs(sw, job, &pixels);
+  if (nslabs < 0) return sh_error_set(err, SH_ERR_NOMEM, "out of memory for the planes");
+  if (nslabs == 0) return SH_OK;
+  sh_status st = interval_pass(job, t, progs, err);
+  if (st != SH_OK) return st;
+
+  char extra[128], defs[640];
+  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n",
+           job->lattice == NULL, job->jitter);
+  gs__defines(defs, sizeof defs, job->scene, ls, extra);
+  GLuint prog;
+  st = gs__program_get(progs, &gs__glsl_plane_vert, &gs__glsl_plane_frag, defs,
+                       &prog, err);
+  if (st != SH_OK) return st;
+  glUseProgram(prog);
+  gs__set_view_uniforms(prog, job->view, job->scene);
+  gs__set_light_uniforms(prog, ls);
+  gs__uniform_f(prog, "u_near", job->view->znear);
+  gs__uniform_f(prog, "u_inv_sub_angle", 1.0 / job->sub_angle);
+  if (job->lattice) {
+    const double *m = job->lattice_map;
+    gs__uniform_4f(prog, "u_xi_xy", m[0], m[1], m[2], m[3]);
+    gs__uniform_2f(prog, "u_xi_z", m[4], m[5]);
+    gs__lattice_bind(job->lattice);
+  }
+  if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(job->shadow);
+  if (job->map) glBindTextureUnit(0, job->map);
+  glBindTextureUnit(3, t->interval);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+  gs__target_draw_buffers(t, 1);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBeginQuery(GL_SAMPLES_PASSED, sw->query);
+  glBindVertexArray(sw->vao);
+  glMultiDrawArrays(GL_TRIANGLE_FAN, sw->first, sw->count, nslabs);
+  glEndQuery(GL_SAMPLES_PASSED);
+  GLuint64 passed = 0;
+  glGetQueryObjectui64v(sw->query, GL_QUERY_RESULT, &passed);
+  counts->planes += nslabs;
+  counts->fragments_rasterized += pixels;
+  counts->fragments += (double)passed;
+  return gs__gl_check("drawing the planes", err);
+}
+
+void gs__sweep_free(gs__sweep *sw) {
+  if (sw->vbo) glDeleteBuffers(1, &sw->vbo);
+  if (sw->vao) glDeleteVertexArrays(1, &sw->vao);
+  if (sw->query) glDeleteQueries(1, &sw->query);
+  free(sw->verts);
+  free(sw->first);
+  free(sw->count);
+  memset(sw, 0, sizeof *sw);
+}

@@ -1,0 +1,10 @@
+// Pixels that see no surface: the background, attenuated by the medium.
+uniform vec3 u_background;
+layout(location = 0) out vec4 o_color;
+layout(location = 1) out vec4 o_depth;
+
+void main() {
+  vec3 d = normalize(view_ray(gl_FragCoord.xy));
+  o_color = vec4(u_background * exp(-u_sigma_t * medium_len_ray(u_eye, d)), 0.0);
+  o_depth = vec4(BIG);
+}

@@ -1,0 +1,189 @@
+// Declarations and functions shared by every gl_shafts shader. The program
+// builder (gs_program.c) puts "#version 450 core" and the variant's
+// #defines before this file and the stage's own file after it:
+//   LIGHT_TYPE  0 point, 1 spot, 2 directional
+//   HAS_MAP     1 if the light has a light map
+//   SHADOW      0 none, 1 a 2D shadow map, 2 a cube shadow map
+//   CONE_CLIP   1 to clip rays to the spot's cone (outer angle < 90 degrees)
+//   PHASE       0 isotropic, 1 Henyey-Greenstein, 2 Nishita hazy,
+//               3 Nishita murky, 4 Rayleigh
+//   XI_EXACT    1: xi per fragment; 0: interpolated from the lattice
+//   JITTER      1: jittered sample depth within each plane's slab
+// Conventions: p is a world point; z is view depth, the distance along the
+// camera's forward axis, so the pixel ray is u_eye + z * d with d the
+// unnormalised direction of view_ray (d . forward = 1).
+
+#ifndef LIGHT_TYPE
+#define LIGHT_TYPE 0
+#endif
+#ifndef HAS_MAP
+#define HAS_MAP 0
+#endif
+#ifndef SHADOW
+#define SHADOW 0
+#endif
+#ifndef CONE_CLIP
+#define CONE_CLIP 0
+#endif
+#ifndef PHASE
+#define PHASE 0
+#endif
+#ifndef XI_EXACT
+#define XI_EXACT 0
+#endif
+#ifndef JITTER
+#define JITTER 0
+#endif
+
+const float PI = 3.14159265358979;
+const float BIG = 3.0e38;
+
+// Camera: eye, forward, right * tan(half fov x), up * tan(half fov y), and
+// (2 / width, 2 / height).
+uniform vec3 u_eye, u_fwd, u_rx, u_uy;
+uniform vec2 u_ndc_scale;
+
+// Medium (sigma 0 without one): coefficients, box, Henyey-Greenstein g.
+uniform vec3 u_sigma_s, u_sigma_t;
+uniform vec3 u_bmin, u_bmax;
+uniform float u_g;
+
+// Light: position, unit axis or travel direction, intensity or irradiance;
+// spot: (cos outer, cos inner, exponent, 1 / tan outer) and the light-map
+// frame; directional light map: s = dot(u_win_s.xyz, p) + u_win_s.w, t alike.
+uniform vec3 u_lpos, u_ldir, u_lpower;
+uniform vec4 u_spot;
+uniform vec3 u_map_right, u_map_up;
+uniform vec4 u_win_s, u_win_t;
+layout(binding = 0) uniform sampler2D u_map;
+
+// Shadows: the 2D map's lookup matrix (world to [0,1]^2 x reversed depth)
+// and the cube map's near distance.
+uniform mat4 u_shadow_mat;
+uniform float u_shadow_near;
+layout(binding = 1) uniform sampler2DShadow u_shadow2d;
+layout(binding = 2) uniform samplerCubeShadow u_shadowcube;
+
+// The unnormalised direction of the ray through a fragment's centre.
+vec3 view_ray(vec2 frag) {
+  vec2 ndc = frag * u_ndc_scale - 1.0;
+  return u_fwd + ndc.x * u_rx + ndc.y * u_uy;
+}
+
+// 1 / d with zero components replaced by a huge number of the right sign,
+// so that box slabs never see 0 * infinity.
+vec3 safe_inv(vec3 d) {
+  vec3 a = 1.0 / max(abs(d), vec3(1e-30));
+  return mix(a, -a, lessThan(d, vec3(0.0)));
+}
+
+// The part [t0, t1] of o + t d, t in [lo, hi], inside the medium's box
+// (empty when t0 >= t1).
+vec2 box_clip(vec3 o, vec3 d, float lo, float hi) {
+  vec3 inv = safe_inv(d);
+  vec3 ta = (u_bmin - o) * inv, tb = (u_bmax - o) * inv;
+  vec3 t0 = min(ta, tb), t1 = max(ta, tb);
+  return vec2(max(lo, max(t0.x, max(t0.y, t0.z))),
+              min(hi, min(t1.x, min(t1.y, t1.z))));
+}
+
+// Length inside the box of the segment from a to b.
+float medium_len(vec3 a, vec3 b) {
+  vec3 d = b - a;
+  vec2 t = box_clip(a, d, 0.0, 1.0);
+  return max(t.y - t.x, 0.0) * length(d);
+}
+
+// Length inside the box of the ray p + t w, t >= 0, w unit.
+float medium_len_ray(vec3 p, vec3 w) {
+  vec2 t = box_clip(p, w, 0.0, BIG);
+  return max(t.y - t.x, 0.0);
+}
+
+// Distance from p, inside the box, to the box's boundary along unit w.
+float box_exit(vec3 p, vec3 w) {
+  vec3 t = (mix(u_bmin, u_bmax, step(0.0, w)) - p) * safe_inv(w);
+  return max(min(t.x, min(t.y, t.z)), 0.0);
+}
+
+// The normalised phase function at cos(alpha) (sh_phase_eval).
+float phase(float c) {
+#if PHASE == 1
+  float den = 1.0 + u_g * u_g - 2.0 * u_g * c;
+  return (1.0 - u_g * u_g) / (4.0 * PI * den * sqrt(den));
+#elif PHASE == 2
+  float x = 0.5 * (1.0 + c), x2 = x * x, x4 = x2 * x2;
+  return (1.0 + 9.0 * x4 * x4) / (8.0 * PI);
+#elif PHASE == 3
+  float y = 0.5 * (1.0 + c);
+  y *= y; y *= y; y *= y; y *= y; y *= y;
+  return 33.0 * (1.0 + 50.0 * y) / (332.0 * PI);
+#elif PHASE == 4
+  return 3.0 * (1.0 + c * c) / (16.0 * PI);
+#else
+  return 1.0 / (4.0 * PI);
+#endif
+}
+
+// The spot profile at cos(theta) (sh_spot_profile).
+float spot_profile(float c) {
+  if (c < u_spot.x) return 0.0;
+  float f = 1.0, w = u_spot.y - u_spot.x;
+  if (w > 0.0 && c < u_spot.y) {
+    float u = (c - u_spot.x) / w;
+    f = u * u * (3.0 - 2.0 * u);
+  }
+  if (u_spot.z != 0.0) f *= pow(max(c, 0.0), u_spot.z);
+  return f;
+}
+
+// The light's angular pattern at p: spot profile times light map, or the
+// directional window's pattern (0 outside it); 1 for plain lights.
+vec3 light_pattern(vec3 p) {
+#if LIGHT_TYPE == 1
+  vec3 d = p - u_lpos;
+  float z = dot(d, u_ldir);
+  vec3 f = vec3(spot_profile(z / max(length(d), 1e-30)));
+#if HAS_MAP
+  vec2 xy = vec2(dot(d, u_map_right), dot(d, u_map_up)) * (u_spot.w / z);
+  if (!(z > 0.0) || abs(xy.x) > 1.0 || abs(xy.y) > 1.0) return vec3(0.0);
+  f *= texture(u_map, vec2(0.5 * (xy.x + 1.0), 0.5 * (1.0 - xy.y))).rgb;
+#endif
+  return f;
+#elif LIGHT_TYPE == 2 && HAS_MAP
+  vec2 st = vec2(dot(u_win_s.xyz, p) + u_win_s.w, dot(u_win_t.xyz, p) + u_win_t.w);
+  if (st.x < 0.0 || st.x > 1.0 || st.y < 0.0 || st.y > 1.0) return vec3(0.0);
+  return texture(u_map, st).rgb;
+#else
+  return vec3(1.0);
+#endif
+}
+
+// What the light delivers at p before visibility: the irradiance normal to
+// wi (the unit direction towards the light), with the light's pattern,
+// 1 / r^2 and the medium's transmittance (sh_light_incident times Tr).
+vec3 light_incident(vec3 p, out vec3 wi) {
+#if LIGHT_TYPE == 2
+  wi = -u_ldir;
+  return u_lpower * light_pattern(p) * exp(-u_sigma_t * medium_len_ray(p, wi));
+#else
+  vec3 tol = u_lpos - p;
+  float r2 = max(dot(tol, tol), 1e-30);
+  wi = tol * inversesqrt(r2);
+  return u_lpower * light_pattern(p) * exp(-u_sigma_t * medium_len(p, u_lpos)) / r2;
+#endif
+}
+
+// The light's visibility at p from its shadow map (1: lit).
+float shadow_at(vec3 p) {
+#if SHADOW == 1
+  vec4 q = u_shadow_mat * vec4(p, 1.0);
+  return texture(u_shadow2d, q.xyz / q.w);
+#elif SHADOW == 2
+  vec3 d = p - u_lpos;
+  vec3 a = abs(d);
+  return texture(u_shadowcube, vec4(d, u_shadow_near / max(a.x, max(a.y, a.z))));
+#else
+  return 1.0;
+#endif
+}

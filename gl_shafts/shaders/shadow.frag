@@ -1,0 +1,2 @@
+// Shadow maps write depth only.
+void main() {}
