@@ -114,6 +114,9 @@ int main(int argc, char **argv) {
   sh_scene *scene = NULL;
   if (sh_scene_load(scene_path, &scene, &err) != SH_OK)
     return sh_cli_report(TOOL, &err);
+  if (scene->nlights == 0)
+    fprintf(stderr, "%s: warning: the scene has no light; its image is black but "
+                    "for emission, ambient and background\n", TOOL);
   se_output out = {0};
   se_notes notes = {0};
   sh_status st;

@@ -347,9 +347,6 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   for (int i = 0; i < scene->nmaterials; i++)
     json_array_append_new(materials, material(&b, i));
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++) st = shape(&b, i, meshes, err);
-  if (scene->nlights == 0)
-    se_note(notes, "the scene has no light; the image is black but for emission "
-                   "and ambient.");
   int samples = opt->quality == SE_QUALITY_FINAL ? 1024 : 64;
   json_t *root = json_pack(
       "{s:s, s:i, s:s, s:{s:i, s:i, s:i, s:i, s:i, s:I}, s:{s:o}, s:o, s:o, s:o, "

@@ -21,6 +21,7 @@ typedef struct pov {
   sh_vec3 center;   /* the bounding sphere, in scene units */
   double radius;
   sh_vec3 sigma_t;  /* per POV-Ray unit */
+  const char *name; /* the output's base name (plain), for the light maps */
 } pov;
 
 /* Numbers: 10 significant digits, enough for half-float output. */
@@ -152,6 +153,16 @@ static void helper_texture(se_buf *b, const char *pigment, int hidden) {
                    "  hollow%s\n", pigment, hidden ? " no_image no_reflection" : "");
 }
 
+/* The pigment of light i's card: its map, written next to the .pov as
+ * NAME_map<i>.exr, each texel filtering light by its colour. */
+static void map_pigment(pov *p, int i) {
+  char file[600];
+  snprintf(file, sizeof file, "%s_map%d.exr", p->name, i);
+  se_buf_puts(p->b, "  pigment { image_map { exr ");
+  se_pov_string(p->b, file);
+  se_buf_puts(p->b, " interpolate 2 filter all 1 } }\n");
+}
+
 static void spot_or_point(pov *p, int i) {
   const sh_scene *s = p->scene;
   const sh_light *l = &s->lights[i];
@@ -208,8 +219,7 @@ static void spot_or_point(pov *p, int i) {
     se_card card = se_spot_card(l, 2e-3 * p->pov_radius / p->scale);
     se_buf_printf(b, "// The light map of lights[%d] as a filter card in front of the light.\n", i);
     se_buf_puts(b, "polygon {\n  5, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0>\n");
-    se_buf_printf(b, "  pigment { image_map { exr \"%s\" interpolate 2 filter all 1 } }\n",
-                  "@MAP@");
+    map_pigment(p, i);
     se_buf_puts(b, "  finish { ambient 0 diffuse 0 emission 0 }\n  hollow no_image no_reflection\n  ");
     card_matrix(p, &card);
     se_buf_puts(b, "\n}\n");
@@ -238,8 +248,7 @@ static void directional(pov *p, int i) {
     se_buf_printf(b, "// The window of lights[%d] as a filter card upstream of the scene, in an\n"
                      "// opaque wall that blocks the light outside the window.\n", i);
     se_buf_puts(b, "polygon {\n  5, <0, 0>, <1, 0>, <1, 1>, <0, 1>, <0, 0>\n");
-    se_buf_printf(b, "  pigment { image_map { exr \"%s\" interpolate 2 filter all 1 } }\n",
-                  "@MAP@");
+    map_pigment(p, i);
     se_buf_puts(b, "  finish { ambient 0 diffuse 0 emission 0 }\n  hollow no_image no_reflection\n  ");
     card_matrix(p, &w.card);
     se_buf_puts(b, "\n}\npolygon {\n  10, ");
@@ -253,29 +262,6 @@ static void directional(pov *p, int i) {
     se_buf_puts(b, "\n}\n");
   }
   se_buf_puts(b, "\n");
-}
-
-/* Replaces the i-th "@MAP@" placeholder written for light i: lights are
- * written in order, so the placeholders are filled as they come. */
-static void fill_map_names(se_buf *b, const char *name, const sh_scene *s) {
-  for (int i = 0; i < s->nlights; i++) {
-    if (!s->lights[i].has_map) continue;
-    char *at = b->data ? strstr(b->data, "\"@MAP@\"") : NULL;
-    if (!at) return;
-    char file[600];
-    snprintf(file, sizeof file, "%s_map%d.exr", name, i);
-    se_buf lit = {0};
-    se_pov_string(&lit, file);
-    se_buf rest = {0};
-    se_buf_puts(&rest, at + 7);
-    b->len = (size_t)(at - b->data);
-    b->data[b->len] = '\0';
-    if (lit.data) se_buf_puts(b, lit.data);
-    if (rest.data) se_buf_puts(b, rest.data);
-    b->failed |= lit.failed | rest.failed;
-    se_buf_free(&lit);
-    se_buf_free(&rest);
-  }
 }
 
 static void material(pov *p, int i) {
@@ -428,13 +414,17 @@ static void medium(pov *p) {
   const sh_medium *m = &p->scene->medium;
   se_buf *b = p->b;
   se_phase_pov pp = se_phase_to_pov(&m->phase);
-  int intervals = p->opt->quality == SE_QUALITY_FINAL ? 1000 : 200;
+  /* POV-Ray 3.7 holds at most 255 intervals (more: "internal nesting
+   * limit"); final quality takes 4 samples in each (with jitter 0, evenly
+   * spread: a finer midpoint rule). */
+  int final = p->opt->quality == SE_QUALITY_FINAL;
+  int intervals = final ? 255 : 200, samples = final ? 4 : 1;
   sh_vec3 lo, hi;
   medium_box(p, &lo, &hi);
   sh_vec3 ss = sh_scale(m->sigma_s, 1.0 / p->scale);
   sh_vec3 sa = sh_scale(m->sigma_a, 1.0 / p->scale);
   se_buf_puts(b, "// The medium: its box (enlarged by a hair), invisible and hollow, with\n"
-                 "// interior media. Method 2 with jitter 0 and one sample per interval is a\n"
+                 "// interior media. Method 2 with jitter 0 and equal samples per interval is a\n"
                  "// midpoint rule with exact transmittance (method 3 is biased).\n");
   se_buf_printf(b, "// Phase: %s; POV-Ray's k has sphere mean %.9g, so the scattering colour\n"
                    "// is sigma_s / (4 pi mean) and `extinction` 4 pi mean.\n",
@@ -446,7 +436,7 @@ static void medium(pov *p) {
   se_buf_puts(b, "\n");
   helper_texture(b, "rgbt <1, 1, 1, 1>", 0);
   se_buf_printf(b, "  interior {\n    media {\n      method 2\n      intervals %d\n"
-                   "      samples 1, 1\n      jitter 0\n", intervals);
+                   "      samples %d, %d\n      jitter 0\n", intervals, samples, samples);
   if (!sh_is_black(ss)) {
     double k = 4.0 * SH_PI * pp.mean;
     se_buf_printf(b, "      scattering {\n        %d, ", pp.type);
@@ -504,6 +494,7 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
   p.scene = scene;
   p.opt = opt;
   p.notes = notes;
+  p.name = name;
   se_bounding_sphere(scene, &p.center, &p.radius);
   p.scale = pow(10.0, round(log10(300.0 / p.radius)));
   p.pov_radius = p.radius * p.scale;
@@ -518,7 +509,6 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
     if (scene->lights[i].type == SH_LIGHT_DIRECTIONAL) directional(&p, i);
     else spot_or_point(&p, i);
   }
-  fill_map_names(&body, name, scene);
   for (int i = 0; i < scene->nmaterials; i++) material(&p, i);
   if (scene->medium.present) medium(&p);
   for (int i = 0; i < scene->nshapes; i++) {
@@ -528,9 +518,6 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
       return st;
     }
   }
-  if (scene->nlights == 0)
-    se_note(notes, "the scene has no light; the image is black but for emission "
-                   "and ambient.");
 
   /* Files: the light maps, the .pov, then the .ini that names them. */
   size_t dir_len = (size_t)(base - pov_path);
