@@ -48,6 +48,35 @@ static double curve_error(const sh_shape *s, const gs__view *view, sh_vec3 c,
   return fmax(e, 1e-4 * r);
 }
 
+static int cmp_u64(const void *a, const void *b) {
+  unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* True if every edge of the mesh is used once in each direction: a closed,
+ * consistently oriented surface (the inside of a shadow caster is then
+ * behind its front). Returns 0 if memory runs out. */
+static int mesh_closed(const sh_mesh *m) {
+  size_t n = 3 * (size_t)m->ntris;
+  if (n == 0) return 0;
+  unsigned long long *e = malloc(n * sizeof *e);
+  if (!e) return 0;
+  for (int t = 0; t < m->ntris; t++)
+    for (int k = 0; k < 3; k++) {
+      unsigned long long a = m->indices[3 * t + k], b = m->indices[3 * t + (k + 1) % 3];
+      e[3 * (size_t)t + k] = a << 32 | b;
+    }
+  qsort(e, n, sizeof *e, cmp_u64);
+  int closed = 1;
+  for (size_t i = 0; i < n && closed; i++) {
+    if (i + 1 < n && e[i + 1] == e[i]) closed = 0;
+    unsigned long long rev = (e[i] & 0xffffffffULL) << 32 | e[i] >> 32;
+    if (closed && !bsearch(&rev, e, n, sizeof *e, cmp_u64)) closed = 0;
+  }
+  free(e);
+  return closed;
+}
+
 /* The object-space shading normal of a triangle's vertex: exact for a
  * sphere and a cylinder's wall; 0 for flat shading. */
 static sh_vec3 smooth_normal(const sh_shape *s, sh_vec3 p, sh_vec3 face_n) {
@@ -79,6 +108,14 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
     st = sh_mesh_tessellate(s, e, &m, err);
     if (st != SH_OK) break;
     gs__shape_draw *d = &g->shape[i];
+    if (s->type == SH_SHAPE_SPHERE) {
+      /* Drawn exactly (the shader intersects the true sphere): the camera
+       * pass inflates the inscribed mesh about the centre to circumscribe
+       * it; shadow maps keep it inscribed, behind the true surface. */
+      d->exact_sphere = 1;
+      d->inflate = s->radius / (s->radius - e);
+      d->center = sh_xform_point(&s->xform, s->center);
+    }
     d->first = (int)b.n;
     d->material = s->material;
     d->bmin = sh_v3s(INFINITY);
@@ -86,6 +123,14 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
     d->convex = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
                 s->type == SH_SHAPE_QUAD ||
                 (s->type == SH_SHAPE_CYLINDER && s->caps);
+    d->closed = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
+                (s->type == SH_SHAPE_CYLINDER && s->caps) ||
+                (s->type == SH_SHAPE_MESH && mesh_closed(&m));
+    /* A mirroring transform turns counter-clockwise triangles clockwise. */
+    sh_vec3 c0 = sh_xform_vector(&s->xform, sh_v3(1, 0, 0));
+    sh_vec3 c1 = sh_xform_vector(&s->xform, sh_v3(0, 1, 0));
+    sh_vec3 c2 = sh_xform_vector(&s->xform, sh_v3(0, 0, 1));
+    d->mirrored = sh_dot(sh_cross(c0, c1), c2) < 0;
     for (int t = 0; t < m.ntris && st == SH_OK; t++) {
       sh_vec3 o[3], w[3];
       for (int k = 0; k < 3; k++) {

@@ -1,8 +1,11 @@
 /* The scene's surfaces as GL triangles: every shape tessellated
  * (sh_tessellate.h), moved to world space, with the normals the reference
- * renderer shades with: the exact normals of spheres and cylinder walls
- * (interpolated across the tessellation), the flat geometric normal of each
- * triangle for everything else. */
+ * renderer shades with: the exact normals of cylinder walls (interpolated
+ * across the tessellation), the flat geometric normal of each triangle for
+ * meshes, boxes, quads and heightfields. Spheres are drawn exactly: their
+ * triangles only cover them, and the surface shader finds the true surface
+ * point, normal and depth on each pixel's ray (the reference intersects
+ * spheres exactly too); their shadows come from the inscribed tessellation. */
 #ifndef GS_GEOMETRY_H
 #define GS_GEOMETRY_H
 
@@ -15,6 +18,14 @@ typedef struct gs__shape_draw {
   int material;        /* index into the scene's materials */
   sh_vec3 bmin, bmax;  /* world bounds */
   int convex;          /* a closed convex shape or a flat one: cannot shadow itself */
+  int closed;          /* a closed surface, outward counter-clockwise */
+  int mirrored;        /* its transform mirrors: triangles are clockwise */
+  int exact_sphere;    /* a sphere: the surface shader intersects the true
+                          sphere; its triangles are inscribed, and scaled
+                          by `inflate` about `center` (world) they
+                          circumscribe it */
+  double inflate;
+  sh_vec3 center;
 } gs__shape_draw;
 
 typedef struct gs__geometry {

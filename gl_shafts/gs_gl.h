@@ -28,6 +28,7 @@
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLVIEWPORTPROC, Viewport)                                             \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
+  X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PFNGLCLIPCONTROLPROC, ClipControl)                                       \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \
@@ -113,6 +114,7 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glDepthMask gs__gl.DepthMask
 #define glViewport gs__gl.Viewport
 #define glPolygonOffset gs__gl.PolygonOffset
+#define glCullFace gs__gl.CullFace
 #define glClipControl gs__gl.ClipControl
 #define glReadPixels gs__gl.ReadPixels
 #define glPixelStorei gs__gl.PixelStorei

@@ -245,6 +245,22 @@ static int shadow_ortho(gs__light_setup *ls, const sh_light *l,
   return 1;
 }
 
+/* Whether a counter-clockwise triangle facing the light looks
+ * counter-clockwise through the map's projection m, whose forward axis is
+ * fwd, at point c in front of the light. */
+static int light_front(const sh_mat4 *m, sh_vec3 c, sh_vec3 fwd) {
+  sh_vec3 a, b;
+  sh_basis(sh_neg(fwd), &a, &b); /* a x b = -fwd: the normal faces the light */
+  sh_vec3 v[3] = {c, sh_add(c, a), sh_add(c, b)};
+  double x[3], y[3];
+  for (int i = 0; i < 3; i++) {
+    double w = m->m[3][0] * v[i].x + m->m[3][1] * v[i].y + m->m[3][2] * v[i].z + m->m[3][3];
+    x[i] = (m->m[0][0] * v[i].x + m->m[0][1] * v[i].y + m->m[0][2] * v[i].z + m->m[0][3]) / w;
+    y[i] = (m->m[1][0] * v[i].x + m->m[1][1] * v[i].y + m->m[1][2] * v[i].z + m->m[1][3]) / w;
+  }
+  return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) > 0;
+}
+
 sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
                                int index, const gs__view *view,
                                const gs__geometry *geom, sh_error *err) {
@@ -306,6 +322,15 @@ sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
     } else {
       ls->shadow = GS__SHADOW_CUBE;
       shadow_cube(ls, l);
+    }
+    for (int f = 0; f < ls->nfaces; f++) {
+      const sh_mat4 *m = &ls->face_vp[f];
+      if (l->type == SH_LIGHT_DIRECTIONAL) {
+        ls->light_front[f] = light_front(m, sh_v3s(0), l->direction);
+      } else {
+        sh_vec3 fwd = sh_normalize(sh_v3(m->m[3][0], m->m[3][1], m->m[3][2]));
+        ls->light_front[f] = light_front(m, sh_add(l->position, fwd), fwd);
+      }
     }
     if (ls->shadow == GS__SHADOW_2D) {
       sh_mat4 bias = {{{0.5, 0, 0, 0.5}, {0, 0.5, 0, 0.5}, {0, 0, 1, 0}, {0, 0, 0, 1}}};

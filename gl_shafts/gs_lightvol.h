@@ -44,6 +44,8 @@ typedef struct gs__light_setup {
   unsigned char *casts;
   int nfaces;              /* 1, or 6 for a cube map */
   sh_mat4 face_vp[6];      /* world to clip for each face, reversed depth */
+  int light_front[6];      /* 1 if triangles facing the light are front
+                              facing (counter-clockwise) in face f */
   sh_mat4 lookup;          /* 2D maps: world to ([0,1]^2, depth) */
   double shadow_near;      /* perspective maps' near distance */
 

@@ -223,8 +223,8 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
     gs__light_setup_free(&r->lights[i]);
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
     if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
-      st = gs__shadow_render(&r->shadows[i], &r->lights[i], o->shadow_map_res,
-                             &r->geom, &r->progs, err);
+      st = gs__shadow_render(&r->shadows[i], scene, &r->lights[i],
+                             o->shadow_map_res, &r->geom, &r->progs, err);
       s.shadow_maps++;
     }
   }

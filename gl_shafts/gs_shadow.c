@@ -6,6 +6,9 @@ static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
   GLenum target = kind == GS__SHADOW_CUBE ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
   glCreateTextures(target, 1, &sm->tex);
   glTextureStorage2D(sm->tex, 1, GL_DEPTH_COMPONENT32F, res, res);
+  /* Bilinear filtering of the comparisons (2x2 percentage-closer
+   * filtering) measured closer to the reference's hard shadows than
+   * nearest-texel comparison (docs/gl_shafts.md). */
   glTextureParameteri(sm->tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(sm->tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(sm->tex, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
@@ -27,30 +30,32 @@ static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
   return gs__gl_check("allocating a shadow map", err);
 }
 
-sh_status gs__shadow_render(gs__shadow_map *sm, const gs__light_setup *ls,
-                            int res, const gs__geometry *geom,
-                            gs__programs *progs, sh_error *err) {
+sh_status gs__shadow_render(gs__shadow_map *sm, const sh_scene *scene,
+                            const gs__light_setup *ls, int res,
+                            const gs__geometry *geom, gs__programs *progs,
+                            sh_error *err) {
   sh_status st = SH_OK;
   if (sm->kind != ls->shadow || sm->res != res || !sm->tex)
     st = alloc_map(sm, ls->shadow, res, err);
-  GLuint prog = 0;
+  GLuint prog[2] = {0, 0}; /* meshes, exact spheres */
   if (st == SH_OK)
     st = gs__program_get(progs, &gs__glsl_shadow_vert, &gs__glsl_shadow_frag,
-                         "", &prog, err);
+                         "", &prog[0], err);
+  if (st == SH_OK)
+    st = gs__program_get(progs, &gs__glsl_shadow_vert, &gs__glsl_shadow_frag,
+                         "#define SPHERE 1\n", &prog[1], err);
   if (st != SH_OK) return st;
-  glUseProgram(prog);
+  /* Two depths far apart along each texel's ray, for the exact spheres:
+   * the near plane and 1/1000 of it (a thousand near distances away) for
+   * perspective maps, both ends of an orthographic one. */
+  double d0 = 1.0, d1 = ls->shadow == GS__SHADOW_2D && ls->light->type ==
+                                SH_LIGHT_DIRECTIONAL ? 0.0 : 1e-3;
   glViewport(0, 0, res, res);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glBindFramebuffer(GL_FRAMEBUFFER, sm->fbo);
-  /* Slope-scaled bias: stored depths pushed away from the light (reversed
-   * depth: smaller), so that lit surfaces do not shadow themselves. Unlike
-   * an offset along the normal, it leaves shadow edges where they are. The
-   * factor was chosen by measurement (docs/gl_shafts.md). */
-  glEnable(GL_POLYGON_OFFSET_FILL);
-  glPolygonOffset(-16.0f, -1.0f);
   for (int f = 0; f < ls->nfaces; f++) {
     if (ls->shadow == GS__SHADOW_CUBE)
       glNamedFramebufferTextureLayer(sm->fbo, GL_DEPTH_ATTACHMENT, sm->tex, 0, f);
@@ -62,12 +67,48 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__light_setup *ls,
                           "the shadow map's framebuffer is incomplete");
     const float zero = 0.0f;
     glClearNamedFramebufferfv(sm->fbo, GL_DEPTH, 0, &zero);
-    gs__uniform_mat4(prog, "u_mvp", &ls->face_vp[f]);
+    sh_mat4 inv;
+    if (!sh_mat4_inverse(ls->face_vp[f], &inv))
+      return sh_error_set(err, SH_ERR_DEVICE, "a shadow map's projection is singular");
+    for (int k = 0; k < 2; k++) {
+      gs__uniform_mat4(prog[k], "u_mvp", &ls->face_vp[f]);
+      gs__uniform_mat4(prog[k], "u_mvp_inv", &inv);
+      gs__uniform_2f(prog[k], "u_texel_ndc", 2.0 / res, 2.0 / res);
+      gs__uniform_2f(prog[k], "u_ray_depths", d0, d1);
+    }
     glBindVertexArray(geom->vao);
-    for (int i = 0; i < geom->nshapes; i++)
-      if (ls->casts[i]) glDrawArrays(GL_TRIANGLES, geom->shape[i].first, geom->shape[i].count);
+    for (int i = 0; i < geom->nshapes; i++) {
+      const gs__shape_draw *s = &geom->shape[i];
+      if (!ls->casts[i]) continue;
+      glUseProgram(prog[s->exact_sphere]);
+      if (s->exact_sphere) {
+        const sh_shape *sh = &scene->shapes[i];
+        gs__uniform_mat4(prog[1], "u_obj_inv", &sh->inv);
+        gs__uniform_v3(prog[1], "u_center", sh->center);
+        gs__uniform_f(prog[1], "u_radius", sh->radius);
+        gs__uniform_v3(prog[1], "u_inflate_center", s->center);
+        gs__uniform_f(prog[1], "u_inflate", s->inflate);
+      }
+      if (s->closed) {
+        /* A closed caster is stored by its far side (the sides facing the
+         * light culled): its lit front is always nearer the light than the
+         * stored depth, and its shadow's edges stay exact, with no bias. */
+        glDisable(GL_POLYGON_OFFSET_FILL);
+        glEnable(GL_CULL_FACE);
+        glCullFace(ls->light_front[f] != s->mirrored ? GL_FRONT : GL_BACK);
+      } else {
+        /* An open one (quads, heightfields, open meshes) needs a bias
+         * against shadowing itself: depths pushed away from the light
+         * (reversed depth: smaller) in proportion to their slope. */
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(-2.0f, -1.0f);
+      }
+      glDrawArrays(GL_TRIANGLES, s->first, s->count);
+    }
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
+  glDisable(GL_CULL_FACE);
   return gs__gl_check("rendering a shadow map", err);
 }
 

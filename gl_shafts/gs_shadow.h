@@ -19,9 +19,10 @@ typedef struct gs__shadow_map {
 
 /* Renders the light's shadow map into sm, (re)allocating its texture when
  * the kind or size changes. Leaves the viewport and framebuffer changed. */
-sh_status gs__shadow_render(gs__shadow_map *sm, const gs__light_setup *ls,
-                            int res, const gs__geometry *geom,
-                            gs__programs *progs, sh_error *err);
+sh_status gs__shadow_render(gs__shadow_map *sm, const sh_scene *scene,
+                            const gs__light_setup *ls, int res,
+                            const gs__geometry *geom, gs__programs *progs,
+                            sh_error *err);
 
 /* Binds the map to its texture unit (1 for 2D, 2 for cube maps). */
 void gs__shadow_bind(const gs__shadow_map *sm);

@@ -45,18 +45,22 @@ sh_status gs__surface_render(const sh_scene *scene, const gs__view *view,
   int passes = scene->nlights > 0 ? scene->nlights : 1;
   for (int pass = 0; pass < passes && geom->nverts > 0; pass++) {
     const gs__light_setup *ls = scene->nlights > 0 ? &lights[pass] : NULL;
-    char defs[512];
-    gs__defines(defs, sizeof defs, scene, ls, "");
-    GLuint prog;
-    sh_status st = gs__program_get(progs, &gs__glsl_surface_vert,
-                                   &gs__glsl_surface_frag, defs, &prog, err);
-    if (st != SH_OK) return st;
-    glUseProgram(prog);
-    gs__set_view_uniforms(prog, view, scene);
-    gs__uniform_mat4(prog, "u_viewproj", &vp);
-    gs__uniform_i(prog, "u_lit", ls != NULL);
+    /* Two programs: meshes, and exact spheres. */
+    GLuint progs2[2];
+    for (int k = 0; k < 2; k++) {
+      char defs[512];
+      gs__defines(defs, sizeof defs, scene, ls, k ? "#define SPHERE 1\n" : "");
+      sh_status st = gs__program_get(progs, &gs__glsl_surface_vert,
+                                     &gs__glsl_surface_frag, defs, &progs2[k], err);
+      if (st != SH_OK) return st;
+      GLuint prog = progs2[k];
+      gs__set_view_uniforms(prog, view, scene);
+      gs__uniform_mat4(prog, "u_viewproj", &vp);
+      gs__uniform_f(prog, "u_near", view->znear);
+      gs__uniform_i(prog, "u_lit", ls != NULL);
+      if (ls) gs__set_light_uniforms(prog, ls);
+    }
     if (ls) {
-      gs__set_light_uniforms(prog, ls);
       if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(&shadows[pass]);
       if (maps[pass]) glBindTextureUnit(0, maps[pass]);
     }
@@ -77,6 +81,16 @@ sh_status gs__surface_render(const sh_scene *scene, const gs__view *view,
       const gs__shape_draw *s = &geom->shape[i];
       if (s->count == 0) continue;
       const sh_material *m = &scene->materials[s->material];
+      GLuint prog = progs2[s->exact_sphere];
+      glUseProgram(prog);
+      if (s->exact_sphere) {
+        const sh_shape *sh = &scene->shapes[i];
+        gs__uniform_mat4(prog, "u_obj_inv", &sh->inv);
+        gs__uniform_v3(prog, "u_center", sh->center);
+        gs__uniform_f(prog, "u_radius", sh->radius);
+        gs__uniform_v3(prog, "u_inflate_center", s->center);
+        gs__uniform_f(prog, "u_inflate", s->inflate);
+      }
       gs__uniform_v3(prog, "u_kd", m->diffuse);
       gs__uniform_v3(prog, "u_ks", m->specular);
       gs__uniform_f(prog, "u_shininess", m->shininess);
@@ -85,7 +99,7 @@ sh_status gs__surface_render(const sh_scene *scene, const gs__view *view,
                                : sh_v3s(0));
       glDrawArrays(GL_TRIANGLES, s->first, s->count);
     }
-    st = gs__gl_check("shading the surfaces", err);
+    sh_status st = gs__gl_check("shading the surfaces", err);
     if (st != SH_OK) return st;
   }
   return background(scene, view, t, progs, err);

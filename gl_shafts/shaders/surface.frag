@@ -6,13 +6,40 @@ in vec3 v_nrm;
 uniform vec3 u_kd, u_ks, u_base;
 uniform float u_shininess;
 uniform int u_lit;
+#if SPHERE
+// The sphere drawn: world to object space, and its object-space centre and
+// radius.
+uniform mat4 u_obj_inv;
+uniform vec3 u_center;
+uniform float u_radius;
+uniform float u_near;
+#endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_depth;
 
 void main() {
+#if SPHERE
+  // The pixel's ray against the true sphere, in object space; the ray
+  // parameter is the view depth (d . forward = 1). `precise` keeps the depth
+  // bit-identical in every pass, which the GL_EQUAL depth test relies on.
+  vec3 d = view_ray(gl_FragCoord.xy);
+  vec3 oc = (u_obj_inv * vec4(u_eye, 1.0)).xyz - u_center;
+  vec3 od = (u_obj_inv * vec4(d, 0.0)).xyz;
+  precise float A = dot(od, od), B = dot(oc, od);
+  precise float disc = B * B - A * (dot(oc, oc) - u_radius * u_radius);
+  if (disc < 0.0) discard;
+  precise float t = (-B - sqrt(disc)) / A;
+  if (t < u_near) t = (-B + sqrt(disc)) / A; // the camera is inside
+  if (t < u_near) discard;
+  gl_FragDepth = u_near / t;
+  vec3 p = u_eye + t * d;
+  vec3 view = p - u_eye;
+  vec3 n = normalize(transpose(mat3(u_obj_inv)) * (oc + t * od));
+#else
   vec3 p = v_pos;
   vec3 view = p - u_eye;
   vec3 n = normalize(v_nrm);
+#endif
   if (dot(n, view) > 0.0) n = -n; // shade the side the camera sees
   vec3 L = u_base;
   if (u_lit != 0) {

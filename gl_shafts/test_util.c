@@ -1,0 +1,73 @@
+#include "test_util.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sh_compare.h"
+#include "sh_parse.h"
+#include "sh_reference.h"
+
+static void report(const char *what, const sh_error *err) {
+  char buf[2048];
+  sh_error_format(err, buf, sizeof buf);
+  fprintf(stderr, "%s: %s\n", what, buf);
+}
+
+sh_scene *tu_scene(const char *json) {
+  const char *src = getenv("SHAFTS_SOURCE_DIR");
+  char dir[1024];
+  snprintf(dir, sizeof dir, "%s/scenes", src ? src : "../..");
+  sh_scene *s = NULL;
+  sh_error err;
+  if (sh_scene_parse(json, "test.json", dir, &s, &err) != SH_OK) {
+    report("parsing a test scene", &err);
+    return NULL;
+  }
+  return s;
+}
+
+sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out) {
+  gs_options o = opt ? *opt : gs_options_defaults(scene);
+  sh_error err;
+  sh_status st = gs_render(scene, &o, out, NULL, &err);
+  if (st != SH_OK) report("gl_shafts", &err);
+  return st;
+}
+
+sh_status tu_reference(const sh_scene *scene, int spp, sh_image *out) {
+  sh_reference_options o = sh_reference_defaults(scene);
+  o.spp = spp;
+  o.progress = 0;
+  sh_error err;
+  sh_status st = sh_render_reference(scene, &o, out, NULL, &err);
+  if (st != SH_OK) report("reference", &err);
+  return st;
+}
+
+double tu_error(const sh_image *img, const sh_image *ref) {
+  sh_image_error e;
+  if (sh_image_compare(img, ref, 0.01, &e, NULL, NULL) != SH_OK) return 1e9;
+  return e.rel_rms;
+}
+
+int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
+                   double bound) {
+  double e = tu_error(img, ref);
+  fprintf(stderr, "%-40s error %7.3f %% (bound %.2f %%)\n", name, 100 * e, 100 * bound);
+  if (e <= bound) return 1;
+  const char *dir = getenv("SHAFTS_BINARY_DIR");
+  char path[1024];
+  sh_image_error ie;
+  sh_image diff = {0};
+  sh_image_compare(img, ref, 0.01, &ie, &diff, NULL);
+  const sh_image *imgs[3] = {img, ref, &diff};
+  const char *suffix[3] = {"", "_ref", "_diff"};
+  for (int i = 0; i < 3; i++) {
+    snprintf(path, sizeof path, "%s/gl_shafts_%s%s.exr", dir ? dir : ".", name, suffix[i]);
+    if (imgs[i]->rgb && sh_image_write(path, imgs[i], 0, NULL) == SH_OK)
+      fprintf(stderr, "  wrote %s\n", path);
+  }
+  sh_image_free(&diff);
+  return 0;
+}

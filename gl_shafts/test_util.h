@@ -1,0 +1,32 @@
+/* Helpers for the gl_shafts tests: scenes from JSON text, renders by
+ * gl_shafts and by the reference, and comparisons that write the images
+ * and their difference to the build directory when a check fails. */
+#ifndef TEST_UTIL_H
+#define TEST_UTIL_H
+
+#include "gs_render.h"
+#include "sh_image.h"
+#include "sh_scene.h"
+
+/* Parses a scene; relative files resolve against the source tree's scenes/
+ * directory (SHAFTS_SOURCE_DIR). Prints the error and returns NULL on
+ * failure. */
+sh_scene *tu_scene(const char *json);
+
+/* Renders with gl_shafts (opt NULL: the scene's defaults). Prints the error
+ * and returns SH_OK or the failure. */
+sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out);
+
+/* The reference renderer with `spp` samples. */
+sh_status tu_reference(const sh_scene *scene, int spp, sh_image *out);
+
+/* The project's error measure (sh_image_compare, lit fraction 0.01). */
+double tu_error(const sh_image *img, const sh_image *ref);
+
+/* Checks that img is within `bound` (relative RMS) of ref, printing the
+ * figure; on failure writes NAME.exr, NAME_ref.exr and NAME_diff.exr to
+ * SHAFTS_BINARY_DIR (or .) and prints their paths. Returns 1 if it holds. */
+int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
+                   double bound);
+
+#endif
