@@ -1,0 +1,420 @@
+"""The renderers the validation compares, one adapter each.
+
+An adapter knows how to tell whether its renderer is there (and why not,
+for the report), what version it is (part of every run's cache key), which
+settings to sweep in each validation mode, how to render one scene at one
+setting, and how to read the renderer's own timing. Adding a renderer is
+adding an entry to ADAPTERS; one that is missing or fails is skipped with a
+note in the report, and the rest of the validation goes on.
+
+Timing: `wall_seconds` is measured by the orchestrator around the render
+command alone (not around exporting the scene); `tool_seconds` is the
+renderer's own figure where it prints one (lmm_tracer's and gl_shafts'
+--stats, POV-Ray's parse and trace times, Blender's frame time), which
+leaves out process start-up. The report plots tool_seconds where there is
+one, since start-up (two seconds for Blender) says nothing about a method.
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+from runs import RunFailed, command, file_fingerprint
+
+HERE = Path(__file__).resolve().parent
+
+
+class Context:
+    """What every adapter needs: where things are, the mode, limits."""
+
+    def __init__(self, root, build, mode="quick", timeout=None, say=print):
+        self.root = Path(root).resolve()
+        self.build = Path(build).resolve()
+        self.mode = mode
+        self.timeout = timeout or (900 if mode == "quick" else 3600)
+        self.say = say
+        self._versions = {}
+
+    def tool(self, rel):
+        """A program of the build tree (build/rel)."""
+        return self.build / rel
+
+    def memo(self, key, compute):
+        """compute() once per context, for version look-ups."""
+        if key not in self._versions:
+            self._versions[key] = compute()
+        return self._versions[key]
+
+
+def _executable(path):
+    return Path(path).is_file() and os.access(path, os.X_OK)
+
+
+def _stats_seconds(path, key="seconds"):
+    """The `seconds` figure of a --stats JSON file, or None."""
+    try:
+        return float(json.loads(Path(path).read_text())[key])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def _system_version(ctx, program, args=("--version",)):
+    """The first line of `program --version` that names a version, and the
+    binary's size and modification time (a package upgrade changes them)."""
+    def compute():
+        path = shutil.which(program)
+        if not path:
+            return "missing"
+        real = os.path.realpath(path)
+        st = os.stat(real)
+        try:
+            out = subprocess.run([path, *args], stdout=subprocess.PIPE,
+                                 stderr=subprocess.STDOUT, timeout=60,
+                                 check=False).stdout.decode(errors="replace")
+        except (OSError, subprocess.TimeoutExpired):
+            out = ""
+        line = next((l.strip() for l in out.splitlines()
+                     if re.search(r"\d+\.\d+", l)), "")
+        return "%s (%d bytes, mtime %d)" % (line, st.st_size, int(st.st_mtime))
+    return ctx.memo(("system", program), compute)
+
+
+def _build_version(ctx, rel):
+    path = ctx.tool(rel)
+    return ctx.memo(("build", rel), lambda: file_fingerprint(path)
+                    if path.exists() else "missing")
+
+
+class Adapter:
+    """The interface every renderer implements (see the module's text)."""
+
+    name = ""
+    label = ""
+    colour = "#000000"
+    # What the report says about the renderer's relation to the reference.
+    about = ""
+
+    def missing(self, ctx):
+        """None if the renderer can run, else a sentence saying why not."""
+        raise NotImplementedError
+
+    def version(self, ctx):
+        raise NotImplementedError
+
+    def settings(self, ctx, scene):
+        """The sweep for this scene in ctx.mode: a list of (label, params)."""
+        raise NotImplementedError
+
+    def hard_case_settings(self, ctx):
+        """The settings the hard-case suite renders every case with: a list
+        of (kind, label, params), kind "user" for the setting a user would
+        choose and "converged" for the renderer's accuracy limit."""
+        raise NotImplementedError
+
+    def render(self, ctx, scene_path, params, work, log):
+        """Renders into the directory `work`; returns a dict with image,
+        wall_seconds and tool_seconds. Raises RunFailed."""
+        raise NotImplementedError
+
+
+# ---------------------------------------------------------------------------
+# lmm_tracer: the reference itself, Whitted ray tracing and light meshes.
+
+class LmmTracer(Adapter):
+    name = "lmm_tracer"
+    label = "lmm_tracer"
+    colour = "#1f77b4"
+    about = ("the project's ray tracer: reference mode at rising spp (the "
+             "same integrator as the ground truth, another seed), whitted "
+             "(the RRTA baseline) and lmm (light meshes: soft shadows, so it "
+             "differs from the hard-shadowed reference by design)")
+    TOOL = "lmm_tracer/lmm_tracer"
+    SWEEP = {
+        "quick": {"spp": (1, 4, 16), "extra": [("whitted, spp 4", {"mode": "whitted", "spp": 4}),
+                                               ("lmm, spp 4", {"mode": "lmm", "spp": 4})]},
+        "full": {"spp": (1, 2, 4, 8, 16, 32, 64, 128, 256),
+                 "extra": [("whitted, spp 16", {"mode": "whitted", "spp": 16}),
+                           ("lmm, spp 16", {"mode": "lmm", "spp": 16})]},
+    }
+
+    def missing(self, ctx):
+        if not _executable(ctx.tool(self.TOOL)):
+            return "%s is not built" % ctx.tool(self.TOOL)
+        return None
+
+    def version(self, ctx):
+        return _build_version(ctx, self.TOOL)
+
+    def settings(self, ctx, scene):
+        sweep = self.SWEEP[ctx.mode]
+        spps = sweep["spp"] if scene.has_medium else sweep["spp"][:1]
+        out = [("reference, spp %d" % s, {"mode": "reference", "spp": s, "seed": 1})
+               for s in spps]
+        for label, params in sweep["extra"]:
+            out.append((label, dict(params, seed=1)))
+        return out
+
+    def hard_case_settings(self, ctx):
+        spp = 64 if ctx.mode == "quick" else 256
+        return [("user", "spp %d" % spp, {"mode": "reference", "spp": spp, "seed": 1})]
+
+    def render(self, ctx, scene_path, params, work, log):
+        out, stats = work / "out.exr", work / "stats.json"
+        cmd = [ctx.tool(self.TOOL), scene_path, "-o", out, "--mode", params["mode"],
+               "--spp", params["spp"], "--seed", params.get("seed", 0),
+               "--stats", stats, "-q"]
+        wall, _ = command(cmd, cwd=work, timeout=ctx.timeout, log=log)
+        return {"image": out, "wall_seconds": wall, "tool_seconds": _stats_seconds(stats)}
+
+
+# ---------------------------------------------------------------------------
+# gl_shafts: the plane-sweep renderer on OSMesa.
+
+class GlShafts(Adapter):
+    name = "gl_shafts"
+    label = "gl_shafts"
+    colour = "#d62728"
+    about = ("the project's plane-sweep renderer (Dobashi et al. 2000) on "
+             "OSMesa: sweeps over the number of planes, the xi lattice, "
+             "--xi exact and --jitter")
+    TOOL = "gl_shafts/gl_shafts"
+    SWEEP = {
+        "quick": [("default", {}),
+                  ("planes 25", {"planes": 25}),
+                  ("planes 100, xi exact", {"planes": 100, "xi": "exact"})],
+        "full": ([("default", {})]
+                 + [("planes %d" % p, {"planes": p}) for p in (12, 25, 50, 100, 200, 400, 800)]
+                 + [("planes 100, lattice %dx%d" % (n, n), {"planes": 100, "lattice": [n, n]})
+                    for n in (4, 8, 40)]
+                 + [("planes %d, xi exact" % p, {"planes": p, "xi": "exact"})
+                    for p in (25, 100, 400)]
+                 + [("planes %d, jitter" % p, {"planes": p, "jitter": True})
+                    for p in (25, 100)]),
+    }
+
+    def missing(self, ctx):
+        if not _executable(ctx.tool(self.TOOL)):
+            return ("%s is not built (gl_shafts needs OSMesa: Debian's "
+                    "libosmesa6-dev)" % ctx.tool(self.TOOL))
+        return None
+
+    def version(self, ctx):
+        return _build_version(ctx, self.TOOL)
+
+    def settings(self, ctx, scene):
+        sweep = self.SWEEP[ctx.mode]
+        if not scene.has_medium:
+            # Without a medium there is no sweep: one render says it all.
+            return sweep[:1]
+        return list(sweep)
+
+    def hard_case_settings(self, ctx):
+        return [("user", "default", {}),
+                ("converged", "planes 400, xi exact", {"planes": 400, "xi": "exact"})]
+
+    def render(self, ctx, scene_path, params, work, log):
+        out, stats = work / "out.exr", work / "stats.json"
+        cmd = [ctx.tool(self.TOOL), scene_path, "-o", out, "--stats", stats, "-q"]
+        if "planes" in params:
+            cmd += ["--planes", params["planes"]]
+        if "lattice" in params:
+            cmd += ["--lattice", params["lattice"][0], params["lattice"][1]]
+        if "xi" in params:
+            cmd += ["--xi", params["xi"]]
+        if params.get("jitter"):
+            cmd += ["--jitter"]
+        wall, _ = command(cmd, cwd=work, timeout=ctx.timeout, log=log)
+        return {"image": out, "wall_seconds": wall, "tool_seconds": _stats_seconds(stats)}
+
+
+# ---------------------------------------------------------------------------
+# The independent renderers, through scene_export.
+
+EXPORTER = "scene_export/scene_export"
+
+
+def _export(ctx, scene_path, target, out, log, quality="final"):
+    command([ctx.tool(EXPORTER), scene_path, "--to", target, "--quality", quality,
+             "-o", out], cwd=out.parent, timeout=300, log=log)
+
+
+def _time_sum(text, pattern):
+    """The sum of the numbers a regular expression's group 1 finds."""
+    found = [float(m) for m in re.findall(pattern, text)]
+    return sum(found) if found else None
+
+
+class PovRay(Adapter):
+    name = "povray"
+    label = "POV-Ray"
+    colour = "#2ca02c"
+    about = ("POV-Ray 3.7 through scene_export --to pov: media method 2, a "
+             "deterministic midpoint rule over `intervals` (swept here, up to "
+             "200: POV-Ray 3.7 stops with 'Internal limit exceeded in "
+             "FixedSimpleVector' at 400 intervals in a spot-lit medium)")
+    SWEEP = {"quick": (25, 100), "full": (10, 25, 50, 100, 200)}
+
+    def missing(self, ctx):
+        if not _executable(ctx.tool(EXPORTER)):
+            return "%s is not built" % ctx.tool(EXPORTER)
+        if not shutil.which("povray"):
+            return "povray is not installed (tools/bootstrap.sh installs it)"
+        return None
+
+    def version(self, ctx):
+        return "%s; scene_export %s" % (_system_version(ctx, "povray"),
+                                        _build_version(ctx, EXPORTER))
+
+    def settings(self, ctx, scene):
+        values = self.SWEEP[ctx.mode] if scene.has_medium else self.SWEEP[ctx.mode][-1:]
+        return [("intervals %d" % n, {"intervals": n}) for n in values]
+
+    def hard_case_settings(self, ctx):
+        return [("user", "intervals 200", {"intervals": 200})]
+
+    def render(self, ctx, scene_path, params, work, log):
+        _export(ctx, scene_path, "pov", work / "scene.pov", log)
+        pov = work / "scene.pov"
+        text = pov.read_text()
+        text, n = re.subn(r"(?m)^(\s*intervals\s+)\d+", r"\g<1>%d" % params["intervals"], text)
+        if n == 0 and re.search(r"\bmedia\s*\{", text):
+            raise RunFailed("the exported .pov has media but no `intervals` line to set")
+        pov.write_text(text)
+        # POV-Ray wants a writable home for its user configuration.
+        env = {"HOME": str(work)}
+        wall, out = command(["povray", "scene.ini"], cwd=work, env=env,
+                            timeout=ctx.timeout, log=log)
+        tool = _time_sum(out, r"(?:Parse|Bounding|Photon|Radiosity|Trace) Time:.*?\(([\d.]+) seconds\)")
+        image = work / "scene.exr"
+        if not image.exists():
+            raise RunFailed("povray wrote no scene.exr")
+        return {"image": image, "wall_seconds": wall, "tool_seconds": tool}
+
+
+def _blender_frame_seconds(text):
+    """Blender's ` Time: MM:SS.ss (Saving: ...)` line, in seconds."""
+    m = re.findall(r"^\s*Time:\s*(?:(\d+):)?(\d+):([\d.]+)", text, re.M)
+    if not m:
+        return None
+    h, mnt, s = m[-1]
+    return int(h or 0) * 3600 + int(mnt) * 60 + float(s)
+
+
+class _Blender(Adapter):
+    """Shared by Cycles and EEVEE: export, run Blender, read its time."""
+
+    def missing(self, ctx):
+        if not _executable(ctx.tool(EXPORTER)):
+            return "%s is not built" % ctx.tool(EXPORTER)
+        if not shutil.which("blender"):
+            return "blender is not installed (tools/bootstrap.sh installs it)"
+        return None
+
+    def _run_blender(self, ctx, prefix, engine, samples, work, log, env=None, pre=()):
+        py = work / "scene.py"
+        out = work / "out.exr"
+        cmd = list(prefix) + ["blender", "-b"]
+        for p in pre:
+            cmd += ["-P", p]
+        cmd += ["-P", py, "--", "--engine", engine, "--out", out,
+                "--samples", samples, "--seed", 1]
+        wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
+        if not out.exists():
+            raise RunFailed("blender wrote no image")
+        return {"image": out, "wall_seconds": wall,
+                "tool_seconds": _blender_frame_seconds(text)}
+
+
+class Cycles(_Blender):
+    name = "cycles"
+    label = "Cycles"
+    colour = "#9467bd"
+    about = ("Blender 3.4 Cycles through scene_export --to blender, single "
+             "scattering, point-sampled pixels, at rising samples per pixel")
+    SWEEP = {"quick": (4, 16), "full": (4, 16, 64, 256, 1024)}
+
+    def version(self, ctx):
+        return "%s; scene_export %s" % (_system_version(ctx, "blender"),
+                                        _build_version(ctx, EXPORTER))
+
+    def settings(self, ctx, scene):
+        return [("%d spp" % n, {"samples": n}) for n in self.SWEEP[ctx.mode]]
+
+    def hard_case_settings(self, ctx):
+        return [("user", "64 spp", {"samples": 64})]
+
+    def render(self, ctx, scene_path, params, work, log):
+        _export(ctx, scene_path, "blender", work / "scene.py", log)
+        return self._run_blender(ctx, [], "cycles", params["samples"], work, log)
+
+
+EEVEE_SCRIPT = HERE / "blender_eevee.py"
+
+
+class Eevee(_Blender):
+    name = "eevee"
+    label = "EEVEE"
+    colour = "#ff7f0e"
+    about = ("Blender 3.4 EEVEE (real-time volumetrics on llvmpipe under "
+             "xvfb-run) through scene_export --to blender, with the "
+             "volumetric tile size and samples swept by "
+             "validation/blender_eevee.py")
+    # (tile size in pixels, volumetric samples, volumetric shadow samples,
+    # TAA render samples)
+    SWEEP = {"quick": ((8, 32, 16, 1),),
+             "full": ((16, 16, 8, 1), (8, 32, 16, 1), (4, 64, 32, 4), (2, 128, 64, 8))}
+
+    def missing(self, ctx):
+        note = super().missing(ctx)
+        if note:
+            return note
+        if not shutil.which("xvfb-run"):
+            return "xvfb-run is not installed (EEVEE needs a display; Debian's xvfb)"
+        return None
+
+    def version(self, ctx):
+        return "%s; scene_export %s; override %s" % (
+            _system_version(ctx, "blender"), _build_version(ctx, EXPORTER),
+            file_fingerprint(EEVEE_SCRIPT))
+
+    def settings(self, ctx, scene):
+        sweep = self.SWEEP[ctx.mode] if scene.has_medium else self.SWEEP[ctx.mode][:1]
+        return [("tile %d, %d samples, TAA %d" % (t, s, a),
+                 {"tile": t, "samples": s, "shadow_samples": ss, "taa": a})
+                for t, s, ss, a in sweep]
+
+    def hard_case_settings(self, ctx):
+        return [("user", "tile 8, 32 samples, TAA 1",
+                 {"tile": 8, "samples": 32, "shadow_samples": 16, "taa": 1})]
+
+    def render(self, ctx, scene_path, params, work, log):
+        _export(ctx, scene_path, "blender", work / "scene.py", log)
+        env = {"SHAFTS_EEVEE_SETTINGS": json.dumps({
+            "volumetric_tile_size": str(params["tile"]),
+            "volumetric_samples": params["samples"],
+            "volumetric_shadow_samples": params["shadow_samples"],
+            "taa_render_samples": params["taa"]})}
+        prefix = ["xvfb-run", "-a", "-s", "-screen 0 640x480x24"]
+        return self._run_blender(ctx, prefix, "eevee", params["taa"], work, log,
+                                 env=env, pre=[EEVEE_SCRIPT])
+
+
+# The table: every renderer the validation knows, in the report's order.
+ADAPTERS = [LmmTracer(), GlShafts(), PovRay(), Cycles(), Eevee()]
+REFERENCE = ADAPTERS[0]
+
+
+def by_name(names):
+    """The adapters named in a comma-separated list (all if empty)."""
+    if not names:
+        return list(ADAPTERS)
+    wanted = [n.strip() for n in names.split(",") if n.strip()]
+    known = {a.name: a for a in ADAPTERS}
+    unknown = [n for n in wanted if n not in known]
+    if unknown:
+        raise ValueError("unknown renderer(s) %s; known: %s"
+                         % (", ".join(unknown), ", ".join(known)))
+    return [known[n] for n in wanted]

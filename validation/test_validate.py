@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+"""Unit tests of the validation scripts' own logic (no renderer needed):
+the Pareto front and time-to-error, the scene content key, the run cache's
+resume behaviour, the hard cases' scene scaling and projection, the SVG
+plot and the report pages. Run: python3 validation/test_validate.py."""
+
+import json
+import math
+import sys
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import hard_cases  # noqa: E402
+import report  # noqa: E402
+from metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach  # noqa: E402
+from runs import RunCache, RunFailed, execute, run_key  # noqa: E402
+from scenes import prepare_data, referenced_files, scaled_size  # noqa: E402
+from svgplot import speed_error_svg  # noqa: E402
+
+
+class MetricsTest(unittest.TestCase):
+    def test_pareto_front(self):
+        pts = [(1, 0.5, "a"), (2, 0.1, "b"), (3, 0.2, "c"), (0.5, 0.9, "d"), (4, 0.05, "e"),
+               (None, 0.01, "no time")]
+        self.assertEqual([p[2] for p in pareto_front(pts)], ["d", "a", "b", "e"])
+
+    def test_pareto_ties(self):
+        # Of two points with equal time, the better error wins; equal error
+        # later in time is dominated.
+        pts = [(1, 0.2, "a"), (1, 0.1, "b"), (2, 0.1, "c")]
+        self.assertEqual([p[2] for p in pareto_front(pts)], ["b"])
+
+    def test_time_to_reach(self):
+        pts = [(1, 0.08, ""), (2, 0.03, ""), (8, 0.015, ""), (5, 0.04, "")]
+        self.assertEqual(time_to_reach(pts, 0.05), 2)
+        self.assertEqual(time_to_reach(pts, 0.02), 8)
+        self.assertIsNone(time_to_reach(pts, 0.01))
+
+    def test_formats(self):
+        self.assertEqual(fmt_seconds(0.0123), "12.3 ms")
+        self.assertEqual(fmt_seconds(12.34), "12.3 s")
+        self.assertEqual(fmt_seconds(None), "–")
+        self.assertEqual(fmt_percent(0.0123), "1.2 %")
+        self.assertEqual(fmt_percent(0.35), "35 %")
+
+
+class ScenesTest(unittest.TestCase):
+    def test_key_follows_referenced_files(self):
+        with tempfile.TemporaryDirectory() as d:
+            d = Path(d)
+            (d / "map.png").write_bytes(b"one")
+            scene = {"camera": {"width": 40, "height": 30},
+                     "lights": [{"light_map": {"image": "map.png"}}]}
+            self.assertEqual(referenced_files(scene, d)[0][0], "lights[0].light_map.image")
+            a = prepare_data("s", scene, d, d / "cache")
+            b = prepare_data("s", scene, d, d / "cache")
+            self.assertEqual(a.key, b.key)
+            (d / "map.png").write_bytes(b"two")
+            c = prepare_data("s", scene, d, d / "cache")
+            self.assertNotEqual(a.key, c.key)
+            half = prepare_data("s", scene, d, d / "cache", scale=0.5)
+            self.assertNotEqual(c.key, half.key)
+            self.assertEqual((half.width, half.height), (20, 15))
+            derived = json.loads(half.path.read_text())
+            self.assertTrue(Path(derived["lights"][0]["light_map"]["image"]).is_absolute())
+
+    def test_scaled_size(self):
+        self.assertEqual(scaled_size(320, 240, 0.5), (160, 120))
+        self.assertEqual(scaled_size(1, 1, 0.5, 8), (1, 1))
+        self.assertEqual(scaled_size(20, 10, 0.1, 8), (8, 8))
+
+
+class RunCacheTest(unittest.TestCase):
+    def test_interrupted_run_is_redone_and_finished_run_is_kept(self):
+        with tempfile.TemporaryDirectory() as d:
+            cache = RunCache(d)
+            key = run_key("scene", "r", "v1", {"x": 1})
+            calls = []
+
+            def interrupted(work, log):
+                calls.append("interrupted")
+                raise KeyboardInterrupt
+
+            with self.assertRaises(KeyboardInterrupt):
+                execute(cache, key, {"renderer": "r"}, interrupted)
+            self.assertIsNone(cache.load(key))
+
+            def render(work, log):
+                calls.append("render")
+                (work / "out.exr").write_bytes(b"image")
+                return {"image": work / "out.exr", "wall_seconds": 1.5, "tool_seconds": 1.0}
+
+            first = execute(cache, key, {"renderer": "r"}, render)
+            self.assertEqual(first["status"], "ok")
+            self.assertFalse(first["cached"])
+            again = execute(cache, key, {"renderer": "r"}, render)
+            self.assertTrue(again["cached"])
+            self.assertEqual(again["tool_seconds"], 1.0)
+            self.assertEqual(calls, ["interrupted", "render"])
+            self.assertNotEqual(key, run_key("scene", "r", "v2", {"x": 1}))
+
+    def test_failures_are_cached_unless_retried(self):
+        with tempfile.TemporaryDirectory() as d:
+            cache = RunCache(d)
+            key = run_key("scene", "r", "v1", {})
+            calls = []
+
+            def fail(work, log):
+                calls.append(1)
+                raise RunFailed("broken")
+
+            self.assertEqual(execute(cache, key, {}, fail)["error"], "broken")
+            self.assertEqual(execute(cache, key, {}, fail)["status"], "failed")
+            self.assertEqual(len(calls), 1)
+            execute(cache, key, {}, fail, retry_failed=True)
+            self.assertEqual(len(calls), 2)
+
+
+class HardCasesTest(unittest.TestCase):
+    def test_scaling_keeps_optical_depth_and_irradiance(self):
+        base = hard_cases.base_scene(8, 6)
+        s = hard_cases.scaled(base, 1e-3)
+        self.assertAlmostEqual(s["medium"]["sigma_s"][0] * s["medium"]["bounds"]["max"][1],
+                               base["medium"]["sigma_s"][0] * base["medium"]["bounds"]["max"][1])
+        light, light0 = s["lights"][0], base["lights"][0]
+        r = light["position"][1] - s["shapes"][0]["corner"][1]
+        r0 = light0["position"][1] - base["shapes"][0]["corner"][1]
+        self.assertAlmostEqual(light["intensity"][0] / r ** 2, light0["intensity"][0] / r0 ** 2)
+        self.assertEqual(s["camera"]["fov_y_deg"], base["camera"]["fov_y_deg"])
+
+    def test_projection_and_mask(self):
+        scene = hard_cases.base_scene(65, 49)
+        scene["camera"]["look_at"] = [0.0, 1.8, 0.0]
+        scene["camera"]["position"] = [0.0, 1.8, 7.0]
+        scene["lights"] = [{"type": "point", "position": [0.0, 1.8, 0.0]}]
+        x, y = hard_cases.project(scene["camera"], [0.0, 1.8, 0.0])
+        self.assertAlmostEqual(x, 32.5)
+        self.assertAlmostEqual(y, 24.5)
+        rects = hard_cases.light_mask(scene, radius=1.5)
+        self.assertEqual(rects, [(31, 23, 3, 3)])
+        self.assertIsNone(hard_cases.project(scene["camera"], [0.0, 1.8, 9.0]))
+
+    def test_every_case_builds_a_valid_looking_scene(self):
+        names = set()
+        for case in hard_cases.CASES:
+            w, h = hard_cases.case_size(case, "quick")
+            s = case.build(w, h)
+            self.assertEqual(s["format"], "shafts-scene")
+            self.assertNotIn(case.name, names)
+            names.add(case.name)
+            for kind, other in case.invariance:
+                self.assertIn(kind, ("scale", "pixel", "plane"))
+        for needed in ("point_light_in_view", "light_on_plane", "inside_spot_cone", "dense",
+                       "thin", "planes_2000", "scale_1e-3", "scale_1e4", "murky_peak",
+                       "grazing_directional", "hard_spot", "light_behind_camera", "image_1x1"):
+            self.assertIn(needed, names)
+
+    def test_dense_and_thin_optical_depths(self):
+        cases = {c.name: c for c in hard_cases.CASES}
+        for name, depth in (("dense", 50.0), ("thin", 1e-6)):
+            m = cases[name].build(8, 6)["medium"]
+            size = m["bounds"]["max"][0] - m["bounds"]["min"][0]
+            self.assertTrue(math.isclose((m["sigma_s"][0] + m["sigma_a"][0]) * size, depth,
+                                         rel_tol=1e-9))
+
+    def test_bounds(self):
+        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.20)
+        self.assertEqual(hard_cases.bound_for("gl_shafts", "case", "base", "quick"),
+                         hard_cases.bound_for("gl_shafts", "user", "base", "quick"))
+        self.assertIsNone(hard_cases.bound_for("eevee", "user", "base", "full"))
+        self.assertIsNone(hard_cases.bound_for("unknown", "user", "base", "full"))
+
+
+def fake_results(tmp):
+    tmp = Path(tmp)
+    for name in ("ref.png", "a.png", "a.diff.png", "plot.svg"):
+        (tmp / name).write_text("x")
+    run = {"renderer": "gl_shafts", "label": "planes 100", "params": {}, "status": "ok",
+           "tool_seconds": 0.2, "wall_seconds": 0.3, "png": str(tmp / "a.png"),
+           "diff_png": str(tmp / "a.diff.png"),
+           "metrics": {"rel_rms": 0.03, "mean_rel": 0.01, "psnr": None, "max_abs": 0.1,
+                       "scale": 1.0, "bad_values": 0}}
+    failed = {"renderer": "gl_shafts", "label": "planes <5> & \"x\"", "params": {},
+              "status": "failed", "error": "exit 1 <oops>"}
+    return {"mode": "quick", "date": "today", "machine": {"cpu": "cpu", "threads": 2},
+            "reference_spp": 512, "lit": 0.01, "elapsed_seconds": 3, "rendered": 2, "cached": 0,
+            "renderers": [{"name": "gl_shafts", "label": "gl_shafts", "colour": "#f00",
+                           "about": "sweep", "available": True, "note": None, "version": "v"},
+                          {"name": "eevee", "label": "EEVEE", "colour": "#0f0", "about": "x",
+                           "available": False, "note": "no blender"}],
+            "scenes": [{"name": "s", "source": "s.json", "width": 4, "height": 3,
+                        "has_medium": True, "runs": [run, failed],
+                        "reference": {"label": "ref", "tool_seconds": 1, "png": str(tmp / "ref.png")},
+                        "time_to": {"gl_shafts": {"0.01": None, "0.02": None, "0.05": 0.2,
+                                                  "best": [0.03, 0.2]}},
+                        "plot": str(tmp / "plot.svg")},
+                       {"name": "broken", "source": "b.json", "error": "cannot read"}],
+            "hard_cases": None}
+
+
+class ReportTest(unittest.TestCase):
+    def test_svg_is_well_formed(self):
+        svg = speed_error_svg([{"label": "a & b", "colour": "#123456",
+                                "points": [(0.1, 0.05, "x<1>"), (1.0, 0.01, "y"), (2, 0.0, "z"),
+                                           (None, 0.1, "untimed")]},
+                               {"label": "empty", "colour": "#000", "points": []}], "t <1>")
+        root = ET.fromstring(svg)
+        self.assertTrue(root.tag.endswith("svg"))
+        self.assertIn("Pareto front", svg)
+        ET.fromstring(speed_error_svg([], "nothing"))
+
+    def test_html_and_markdown(self):
+        with tempfile.TemporaryDirectory() as d:
+            results = fake_results(d)
+            report.write_html(results, d)
+            page = (Path(d) / "index.html").read_text()
+            self.assertIn('src="a.png"', page)
+            self.assertIn("exit 1 &lt;oops&gt;", page)
+            self.assertNotIn("<oops>", page)
+            self.assertIn("cannot read", page)
+            md = report.summary_markdown(results)
+            self.assertIn("| s | 4x3 | gl_shafts | – | – | 200 ms | 3 % (200 ms) |", md)
+
+
+if __name__ == "__main__":
+    unittest.main()

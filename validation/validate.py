@@ -1,0 +1,337 @@
+#!/usr/bin/env python3
+"""Cross-renderer validation: every scene, every renderer, against the
+converged reference, in error and in time.
+
+  validate.py [--quick | --full] --report DIR [--scenes DIR_OR_FILE ...]
+              [--cache DIR] [--build-dir DIR] [--renderers a,b,...]
+              [--scale F] [--ref-spp N] [--no-hard-cases] [--retry-failed]
+
+For each scene: the converged reference (lmm_tracer --mode reference at
+high spp), then each renderer's sweep (renderers.py: gl_shafts over planes,
+lattice and --xi; lmm_tracer over spp and modes; POV-Ray over media
+intervals; Cycles over samples; EEVEE over volumetric settings), each run
+timed and compared with the reference (shafts_compare). Then the hard-case
+stability suite (hard_cases.py). Writes DIR/index.html, DIR/summary.md and
+DIR/results.json; runs are cached (runs.py) so a re-run renders only what
+changed and an interrupted run resumes. A renderer that is missing or fails
+is skipped with a note in the report.
+
+Exit status: 0 when the report is written (renderer failures are in it;
+with --strict, 1 if a hard case failed), 2 for bad arguments or a missing
+build.
+"""
+
+import argparse
+import json
+import os
+import platform
+import re
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+import hard_cases  # noqa: E402
+import renderers  # noqa: E402
+import report  # noqa: E402
+import subprocess  # noqa: E402
+
+from metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,  # noqa: E402
+                     time_to_reach)
+from runs import RunCache, execute, run_key  # noqa: E402
+from scenes import find_scenes, light_mask, prepare_file, write_atomic  # noqa: E402
+from svgplot import speed_error_svg  # noqa: E402
+
+MODES = {
+    # Image scale, reference spp, and the renderers of the hard cases.
+    "quick": {"scale": 0.5, "ref_spp": 512, "hard": "lmm_tracer,gl_shafts"},
+    "full": {"scale": 1.0, "ref_spp": 4096, "hard": ""},
+}
+LIT = 0.01
+
+
+def slug(text):
+    """A file-name-safe form of a label."""
+    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-") or "run"
+
+
+def machine():
+    """What the timings were measured on."""
+    cpu = platform.processor() or "unknown CPU"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    return {"cpu": cpu, "threads": os.cpu_count() or 0, "system": platform.platform()}
+
+
+class Validation:
+    """One validation run: its context, cache, report directory, tallies."""
+
+    def __init__(self, ctx, cache, report_dir, adapters, ref_spp, retry_failed, say):
+        self.ctx, self.cache, self.dir = ctx, cache, Path(report_dir)
+        self.adapters, self.ref_spp = adapters, ref_spp
+        self.retry_failed, self.say = retry_failed, say
+        self.compare_tool = ctx.tool("validation/shafts_compare")
+        self.rendered = self.cached = 0
+
+    def run(self, adapter, scene, params, label):
+        """One run, from the cache or rendered."""
+        key = run_key(scene.key, adapter.name, adapter.version(self.ctx), params)
+        describe = {"renderer": adapter.name, "label": label, "params": params,
+                    "scene": scene.name}
+        result = execute(self.cache, key, describe,
+                         lambda work, log: adapter.render(self.ctx, scene.path, params, work, log),
+                         retry_failed=self.retry_failed,
+                         say=lambda m: self.say("  %s: %s" % (scene.name, m)))
+        if result.get("cached"):
+            self.cached += 1
+        else:
+            self.rendered += 1
+            if result["status"] != "ok":
+                self.say("  %s: %s %s failed: %s" % (scene.name, adapter.name, label,
+                                                      result.get("error")))
+        return result
+
+    def scene(self, path, scale):
+        """Renders and compares one scene; returns its entry of the results."""
+        try:
+            scene = prepare_file(path, self.cache.root, scale)
+        except (OSError, ValueError) as e:
+            name = Path(path).stem
+            return {"name": name, "source": str(path), "error": "cannot read the scene: %s" % e}
+        self.say("%s (%dx%d)" % (scene.name, scene.width, scene.height))
+        sdir = self.dir / "scenes" / scene.name
+        sdir.mkdir(parents=True, exist_ok=True)
+        entry = {"name": scene.name, "source": scene.source, "width": scene.width,
+                 "height": scene.height, "has_medium": scene.has_medium, "runs": []}
+        ref_label = "lmm_tracer reference, spp %d" % self.ref_spp
+        ref = self.run(renderers.REFERENCE, scene,
+                       {"mode": "reference", "spp": self.ref_spp, "seed": 0}, ref_label)
+        if ref["status"] != "ok":
+            entry["error"] = "the reference failed: %s" % ref.get("error")
+            return entry
+        png = sdir / "reference.png"
+        try:
+            compare(self.compare_tool, ref["image"], ref["image"], preview=png,
+                    exposure=scene.exposure)
+        except CompareFailed as e:
+            entry["error"] = "cannot read the reference image: %s" % e
+            return entry
+        entry["reference"] = {"label": ref_label, "tool_seconds": ref.get("tool_seconds"),
+                              "wall_seconds": ref.get("wall_seconds"), "png": str(png)}
+        # Lights in view: the errors are also measured without the pixels
+        # next to them (scenes.light_mask), where radiance is unbounded.
+        mask = light_mask(scene.data)
+        masked_ref = None
+        if mask:
+            entry["masked_pixels"] = sum(r[2] * r[3] for r in mask)
+            masked_ref = mask_image(ref["image"], mask, sdir / ".reference.masked.exr")
+        for adapter in self.adapters:
+            for label, params in adapter.settings(self.ctx, scene):
+                result = self.run(adapter, scene, params, label)
+                row = {"renderer": adapter.name, "label": label, "params": params,
+                       "status": result["status"], "error": result.get("error"),
+                       "tool_seconds": result.get("tool_seconds"),
+                       "wall_seconds": result.get("wall_seconds"),
+                       "cached": result.get("cached", False)}
+                entry["runs"].append(row)
+                if result["status"] != "ok":
+                    continue
+                stem = "%s-%s" % (adapter.name, slug(label))
+                try:
+                    row["metrics"] = compare(self.compare_tool, ref["image"], result["image"],
+                                             lit=LIT, diff=sdir / (stem + ".diff.png"),
+                                             preview=sdir / (stem + ".png"),
+                                             exposure=scene.exposure)
+                    row["png"] = str(sdir / (stem + ".png"))
+                    row["diff_png"] = str(sdir / (stem + ".diff.png"))
+                    if masked_ref:
+                        tmp = sdir / ".masked.exr"
+                        row["metrics_masked"] = compare(
+                            self.compare_tool, masked_ref,
+                            mask_image(result["image"], mask, tmp), lit=LIT)
+                        tmp.unlink()
+                except (CompareFailed, subprocess.CalledProcessError) as e:
+                    row["status"] = "failed"
+                    row["compare_error"] = "cannot compare: %s" % e
+        if masked_ref:
+            Path(masked_ref).unlink()
+        self._summarise(entry, "metrics", "time_to", "plot", "")
+        if masked_ref:
+            self._summarise(entry, "metrics_masked", "time_to_masked", "plot_masked",
+                            ", away from the lights in view")
+        self._self_check(entry)
+        return entry
+
+    def _summarise(self, entry, metrics, time_key, plot_key, what):
+        """Each renderer's time to reach each error level, and the plot,
+        from the runs' `metrics` figures."""
+        series, entry[time_key] = [], {}
+        for adapter in self.adapters:
+            if not any(r["renderer"] == adapter.name for r in entry["runs"]):
+                continue
+            pts = [(report._time_of(r), r[metrics]["rel_rms"], r["label"])
+                   for r in entry["runs"] if r["renderer"] == adapter.name and r.get(metrics)]
+            tt = {"%g" % th: time_to_reach(pts, th) for th in report.THRESHOLDS}
+            valid = [p for p in pts if p[0] is not None]
+            if valid:
+                best = min(valid, key=lambda p: (p[1], p[0]))
+                tt["best"] = [best[1], best[0]]
+            entry[time_key][adapter.name] = tt
+            series.append({"label": adapter.label, "colour": adapter.colour, "points": pts})
+        plot = self.dir / "plots" / ("%s%s.svg" % (entry["name"], "-masked" if what else ""))
+        write_atomic(plot, speed_error_svg(series, "%s: speed against error%s"
+                                           % (entry["name"], what)))
+        entry[plot_key] = str(plot)
+
+    @staticmethod
+    def _self_check(entry):
+        """The reference's self-check: its error estimate is the error of
+        the lmm_tracer reference run with the most samples below it."""
+        checks = [r for r in entry["runs"] if r["renderer"] == renderers.REFERENCE.name
+                  and r["params"].get("mode") == "reference" and r.get("metrics")]
+        if checks and entry["has_medium"]:
+            top = max(checks, key=lambda r: r["params"]["spp"])
+            m = top.get("metrics_masked") or top["metrics"]
+            entry["self_check"] = m["rel_rms"]
+            entry["self_check_spp"] = top["params"]["spp"]
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(
+        description="Cross-renderer validation against the converged reference "
+                    "(docs/validation.md).")
+    g = ap.add_mutually_exclusive_group()
+    g.add_argument("--quick", dest="mode", action="store_const", const="quick",
+                   help="reduced image sizes and few settings: minutes (default)")
+    g.add_argument("--full", dest="mode", action="store_const", const="full",
+                   help="the scenes' own sizes and full sweeps")
+    ap.add_argument("--report", required=True, help="the report directory")
+    ap.add_argument("--scenes", nargs="+", metavar="DIR_OR_FILE",
+                    help="scene files, or directories of them (default: scenes/)")
+    ap.add_argument("--cache", help="the run cache (default: BUILD/validation-cache)")
+    ap.add_argument("--build-dir", help="the build tree (default: build/)")
+    ap.add_argument("--renderers", default="",
+                    help="comma-separated: %s (default: all)"
+                         % ",".join(a.name for a in renderers.ADAPTERS))
+    ap.add_argument("--hard-renderers",
+                    help="renderers of the hard cases (default: quick lmm_tracer,gl_shafts; "
+                         "full: all)")
+    ap.add_argument("--scale", type=float, help="image size factor (quick 0.5, full 1)")
+    ap.add_argument("--ref-spp", type=int, help="reference spp (quick 512, full 4096)")
+    ap.add_argument("--timeout", type=float, help="seconds before a run is stopped")
+    ap.add_argument("--no-hard-cases", action="store_true", help="skip the hard cases")
+    ap.add_argument("--retry-failed", action="store_true",
+                    help="render again the runs that failed last time")
+    ap.add_argument("--strict", action="store_true",
+                    help="exit with status 1 if a hard-case check failed")
+    ap.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+    args = ap.parse_args(argv)
+    args.mode = args.mode or "quick"
+    return args
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    started = time.time()
+    say = (lambda m: None) if args.quiet else (lambda m: print(m, flush=True))
+    root = HERE.parent
+    build = Path(args.build_dir or root / "build")
+    mode = MODES[args.mode]
+    ctx = renderers.Context(root, build, mode=args.mode, timeout=args.timeout, say=say)
+    if not ctx.tool("validation/shafts_compare").exists() or renderers.REFERENCE.missing(ctx):
+        print("validate: build first (make build): %s needs lmm_tracer and shafts_compare"
+              % build, file=sys.stderr)
+        return 2
+    try:
+        wanted = renderers.by_name(args.renderers)
+        hard_wanted = renderers.by_name(args.hard_renderers if args.hard_renderers is not None
+                                        else mode["hard"])
+    except ValueError as e:
+        print("validate: %s" % e, file=sys.stderr)
+        return 2
+    scene_files = find_scenes(args.scenes, root / "scenes")
+    if not scene_files:
+        print("validate: no scene files found", file=sys.stderr)
+        return 2
+    report_dir = Path(args.report)
+    report_dir.mkdir(parents=True, exist_ok=True)
+    cache = RunCache(Path(args.cache) if args.cache else build / "validation-cache")
+
+    available, infos = [], []
+    for a in renderers.ADAPTERS:
+        if a not in wanted and a not in hard_wanted:
+            continue
+        note = a.missing(ctx)
+        info = {"name": a.name, "label": a.label, "colour": a.colour, "about": a.about,
+                "available": note is None, "note": note}
+        if note is None:
+            info["version"] = a.version(ctx)
+            if a in wanted:
+                available.append(a)
+        else:
+            say("skipping %s: %s" % (a.name, note))
+        infos.append(info)
+
+    ref_spp = args.ref_spp or mode["ref_spp"]
+    results = {"mode": args.mode, "date": time.strftime("%Y-%m-%d %H:%M:%S"),
+               "machine": machine(), "reference_spp": ref_spp, "lit": LIT,
+               "renderers": infos, "scenes": [], "hard_cases": None}
+    val = Validation(ctx, cache, report_dir, available, ref_spp, args.retry_failed, say)
+
+    def save():
+        results["elapsed_seconds"] = time.time() - started
+        results["rendered"], results["cached"] = val.rendered, val.cached
+        write_atomic(report_dir / "results.json", json.dumps(results, indent=1) + "\n")
+        report.write_html(results, report_dir)
+        write_atomic(report_dir / "summary.md", report.summary_markdown(results))
+
+    scale = args.scale if args.scale is not None else mode["scale"]
+    for path in scene_files:
+        results["scenes"].append(val.scene(path, scale))
+        save()
+
+    if not args.no_hard_cases:
+        hard = [a for a in hard_wanted if a.missing(ctx) is None]
+        say("hard cases (%s)" % ", ".join(a.name for a in hard))
+        with tempfile.TemporaryDirectory(prefix="validate-hard.") as tmp:
+            hc = hard_cases.run_suite(ctx, hard, cache, tmp, say=lambda m: say("  " + m),
+                                      retry_failed=args.retry_failed,
+                                      image_dir=report_dir / "hard")
+        results["hard_cases"] = hc
+    save()
+
+    say("")
+    for s in results["scenes"]:
+        if s.get("error"):
+            say("%-18s %s" % (s["name"], s["error"]))
+            continue
+        for name, tt in s["time_to"].items():
+            best = tt.get("best")
+            say("%-18s %-11s least error %-8s  to 5%%: %-9s to 2%%: %-9s to 1%%: %s" % (
+                s["name"], name, fmt_percent(best[0]) if best else "-",
+                fmt_seconds(tt.get("0.05")), fmt_seconds(tt.get("0.02")), fmt_seconds(tt.get("0.01"))))
+    failed = results["hard_cases"]["failures"] if results["hard_cases"] else []
+    if results["hard_cases"]:
+        say("hard cases: %d failed checks" % len(failed))
+        for f in failed:
+            say("  FAIL %s / %s %s: %s: %s" % f)
+    say("report: %s" % (report_dir / "index.html"))
+    return 1 if (args.strict and failed) else 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        print("validate: interrupted; finished runs are cached, run again to resume",
+              file=sys.stderr)
+        sys.exit(130)
