@@ -2,12 +2,16 @@
 #   make run       install what is missing, build, render the default scene
 #   make test      install what is missing, build with -Werror, run the tests
 #   make test-asan the test suite under AddressSanitizer + UBSan
+#   make validate REPORT=DIR       cross-renderer report, quick (minutes)
+#   make validate-full REPORT=DIR  the same, thorough (docs/validation.md)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 SCENE ?= scenes/teapot_spot.json
 OUT ?= out
+REPORT ?= $(BUILD)/validation-report
+VALIDATE_ARGS ?=
 
-.PHONY: all bootstrap build run test test-asan clean
+.PHONY: all bootstrap build run test test-asan validate validate-full clean
 
 all: build
 
@@ -30,6 +34,12 @@ test-asan: bootstrap
 	cmake -S . -B $(BUILD)-asan -DSHAFTS_WERROR=ON -DSHAFTS_SANITIZE=ON
 	cmake --build $(BUILD)-asan -j $(JOBS)
 	cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
+
+validate: build
+	python3 validation/validate.py --quick --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
+
+validate-full: build
+	python3 validation/validate.py --full --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-asan
