@@ -58,9 +58,8 @@ from scenes import light_mask, prepare_data, project  # noqa: E402
 # reported, not bounded. docs/validation.md explains every figure.
 BOUNDS = {
     "lmm_tracer": {"user": {"default": 0.02, "dense": {"quick": 0.25, "full": 0.05}}},
-    "gl_shafts": {"user": {"default": 0.06, "dense": 0.20, "point_light_in_view": 0.12,
-                           "light_on_plane": 0.12, "hard_spot": 0.08},
-                  "converged": {"default": {"quick": 0.05, "full": 0.035}}},
+    "gl_shafts": {"user": {"default": 0.02, "dense": 0.10},
+                  "converged": {"default": 0.02}},
     "povray": {"user": {"default": 0.01, "dense": 0.03, "thin": None, "scale_1e-3": None}},
     "cycles": {"user": {"default": None}},
     "eevee": {"user": {"default": None}},
@@ -72,24 +71,17 @@ BOUND_REASONS = {
     ("lmm_tracer", "dense"): "equiangular sampling follows 1/r^2 but not the "
         "extinction: at optical depth 50 most samples fall where the transmittance "
         "is negligible, so the variance is large at 64 spp (it falls steeply with spp)",
-    ("gl_shafts", "default"): "the default 100 planes and 20x20 lattice at these "
-        "small image sizes, where edges of cones and shadows are many of the lit pixels",
+    ("gl_shafts", "default"): "gl_shafts' own acceptance bound: its default "
+        "render of every canonical scene within 2% of the reference (issue 3)",
     ("gl_shafts", "dense"): "100 planes over the lit depth range are further apart "
-        "than the 1/sigma_t = 0.08 over which the light dies: the sweep's quadrature "
-        "(400 planes bring it to 2%)",
-    ("gl_shafts", "point_light_in_view"): "next to a light in view xi varies as "
-        "1/r^2 across the 20x20 lattice, which interpolates it coarsely "
-        "(--xi exact removes this)",
-    ("gl_shafts", "light_on_plane"): "as for a light in view",
-    ("gl_shafts", "hard_spot"): "the hard cone edge: interpolated lattice and "
-        "planes against point-sampled rays",
+        "than the 1/sigma_t = 0.08 units over which the light dies: the sweep's "
+        "quadrature (400 planes bring it below 1%)",
     ("gl_shafts", "converged"): "the sweep's accuracy limit (400 planes, xi per "
-        "fragment): what remains is the shadow map against exact shadow rays at "
-        "the edges of volumetric shadows",
-    ("povray", "default"): "media method 2 at 200 intervals is a midpoint rule "
+        "fragment) must reach the reference as closely as the default promises",
+    ("povray", "default"): "media method 2 at 255 intervals of 4 samples is a midpoint rule "
         "with exact transmittance; the exporter maps the scene exactly",
     ("povray", "dense"): "the light dies within 1/sigma_t = 0.08 units, a few of "
-        "the 200 intervals: the midpoint rule's error grows with the optical depth "
+        "the 1020 samples: the midpoint rule's error grows with the optical depth "
         "of an interval",
     ("povray", "thin"): "not bounded: POV-Ray writes half-float EXR, and radiance "
         "of 1e-8 lies among half precision's subnormal numbers (steps of 6e-8)",
@@ -115,6 +107,25 @@ INVARIANCE_BOUNDS = {
     "cycles": {"scale": None, "pixel": None, "plane": None},
     "eevee": {"scale": None, "pixel": None, "plane": None},
 }
+
+
+# Failures found by this suite, reported to the renderer's owners and not
+# yet fixed: (renderer, case, check name prefix) -> what is known. Such a
+# check is shown as a known failure and does not fail the suite; once it
+# passes the report says so, and the entry should be removed.
+KNOWN_ISSUES = {
+    ("gl_shafts", "image_1x1", "equals the centre pixel"):
+        "gl_shafts renders the centre pixel of a 3x3 image 2% darker than the "
+        "same ray in a 1x1 image (and than the reference); found 2026-11-22",
+}
+
+
+def known_issue(renderer, case, check):
+    """The note of a known failure of this check, or None."""
+    for (r, c, prefix), note in KNOWN_ISSUES.items():
+        if r == renderer and c == case and check.startswith(prefix):
+            return note
+    return None
 
 
 def bound_for(renderer, kind, case, mode):
@@ -249,6 +260,9 @@ class Case:
     only: tuple = ()                   # renderers it applies to (empty: all)
     extra: dict = field(default_factory=dict)   # renderer -> [(label, params)]
     invariance: tuple = ()             # (kind, other case name) checks
+    # The case whose reference is the truth for this one (a scaled scene's
+    # true image is its base scene's); None: its own reference.
+    reference_case: str = None
 
 
 def _point_in_view(w, h):
@@ -385,10 +399,10 @@ CASES = [
          only=("gl_shafts",), extra={"gl_shafts": [("planes 2000", {"planes": 2000})]}),
     Case("scale_1e-3", "the base scene with all lengths times 1e-3, sigma times 1e3, "
          "intensity times 1e-6: the same image", lambda w, h: scaled(base_scene(w, h), 1e-3),
-         invariance=(("scale", "base"),)),
+         invariance=(("scale", "base"),), reference_case="base"),
     Case("scale_1e4", "the base scene with all lengths times 1e4, sigma times 1e-4, "
          "intensity times 1e8: the same image", lambda w, h: scaled(base_scene(w, h), 1e4),
-         invariance=(("scale", "base"),)),
+         invariance=(("scale", "base"),), reference_case="base"),
     Case("murky_peak", "the murky phase function's forward peak: a spot shines at the camera",
          _murky, mask_lights=True),
     Case("grazing_directional", "a directional light travelling 1.1 degrees off the "
@@ -448,7 +462,12 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
                  "masked_pixels": sum(r[2] * r[3] for r in mask), "renderings": []}
         results["cases"].append(entry)
         ref_params = {"mode": "reference", "spp": reference_spp(ctx.mode), "seed": 0}
-        ref = _run(ctx, cache, ref_adapter, prepared, ref_params, "reference", say, retry_failed)
+        truth = prepared
+        if case.reference_case:
+            other = next(c for c in CASES if c.name == case.reference_case)
+            truth = prepare_data("hard-" + other.name, other.build(w, h), HERE, cache.root)
+            entry["reference_case"] = other.name
+        ref = _run(ctx, cache, ref_adapter, truth, ref_params, "reference", say, retry_failed)
         entry["reference"] = {"status": ref["status"], "error": ref.get("error"),
                               "seconds": ref.get("tool_seconds")}
         if ref["status"] != "ok":
@@ -488,8 +507,18 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
                     continue
                 _check_invariance(case, kind, other, r, entry, images, scratch, compare_tool)
         for r in entry["renderings"]:
+            for chk in r["checks"]:
+                note = known_issue(r["renderer"], case.name, chk["name"])
+                if note:
+                    chk["known"] = note
+                    if not chk["ok"]:
+                        chk["ok"] = True
+                        chk["known_failure"] = True
             r["ok"] = all(c["ok"] for c in r["checks"])
     results["failures"] = failures(results)
+    results["known_failures"] = [(c["name"], r["renderer"], r["label"], k["name"], k["known"])
+                                 for c in results["cases"] for r in c["renderings"]
+                                 for k in r["checks"] if k.get("known_failure")]
     return results
 
 
@@ -593,6 +622,7 @@ def print_table(results, out=sys.stdout):
                 "%.3g%%" % (100 * err) if err is not None else "-",
                 "%g%%" % (100 * bound) if bound is not None else "-",
                 "; ".join("%s %.2g%%%s" % (k["name"], 100 * (k.get("value") or 0),
+                                          " KNOWN FAILURE" if k.get("known_failure") else
                                           "" if k["ok"] else " FAIL") for k in inv)),
                 file=out)
 
@@ -643,6 +673,8 @@ def main(argv=None):
     bad = failures(results)
     for f in bad:
         print("FAIL: %s / %s %s: %s: %s" % f)
+    for f in results["known_failures"]:
+        print("known failure: %s / %s %s: %s: %s" % f)
     print("hard cases: %d renderings, %d failed checks" % (
         sum(len(c["renderings"]) for c in results["cases"]), len(bad)))
     return 1 if bad else 0

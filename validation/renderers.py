@@ -178,20 +178,24 @@ class GlShafts(Adapter):
     label = "gl_shafts"
     colour = "#d62728"
     about = ("the project's plane-sweep renderer (Dobashi et al. 2000) on "
-             "OSMesa: sweeps over the number of planes, the xi lattice, "
-             "--xi exact and --jitter")
+             "OSMesa: its default, and sweeps over the number of planes, xi "
+             "per fragment (--xi exact) or on the lattice (the paper's "
+             "method) at several lattice sizes, and --jitter")
     TOOL = "gl_shafts/gl_shafts"
+    # Every setting but "default" names its --xi, so that a change of
+    # gl_shafts' defaults cannot change what a label means.
     SWEEP = {
         "quick": [("default", {}),
-                  ("planes 25", {"planes": 25}),
-                  ("planes 100, xi exact", {"planes": 100, "xi": "exact"})],
+                  ("planes 25, xi exact", {"planes": 25, "xi": "exact"}),
+                  ("planes 100, xi lattice 20x20", {"planes": 100, "xi": "lattice"})],
         "full": ([("default", {})]
-                 + [("planes %d" % p, {"planes": p}) for p in (12, 25, 50, 100, 200, 400, 800)]
-                 + [("planes 100, lattice %dx%d" % (n, n), {"planes": 100, "lattice": [n, n]})
-                    for n in (4, 8, 40)]
                  + [("planes %d, xi exact" % p, {"planes": p, "xi": "exact"})
+                    for p in (12, 25, 50, 100, 200, 400, 800)]
+                 + [("planes %d, xi lattice 20x20" % p, {"planes": p, "xi": "lattice"})
                     for p in (25, 100, 400)]
-                 + [("planes %d, jitter" % p, {"planes": p, "jitter": True})
+                 + [("planes 100, xi lattice %dx%d" % (n, n),
+                     {"planes": 100, "xi": "lattice", "lattice": [n, n]}) for n in (4, 8, 40)]
+                 + [("planes %d, xi exact, jitter" % p, {"planes": p, "xi": "exact", "jitter": True})
                     for p in (25, 100)]),
     }
 
@@ -251,11 +255,13 @@ class PovRay(Adapter):
     name = "povray"
     label = "POV-Ray"
     colour = "#2ca02c"
-    about = ("POV-Ray 3.7 through scene_export --to pov: media method 2, a "
-             "deterministic midpoint rule over `intervals` (swept here, up to "
-             "200: POV-Ray 3.7 stops with 'Internal limit exceeded in "
-             "FixedSimpleVector' at 400 intervals in a spot-lit medium)")
-    SWEEP = {"quick": (25, 100), "full": (10, 25, 50, 100, 200)}
+    about = ("POV-Ray 3.7 through scene_export --to pov --quality final: "
+             "media method 2 with jitter 0, a deterministic midpoint rule over "
+             "`intervals` with `samples` per interval, both swept here (POV-Ray "
+             "3.7 holds at most 255 intervals)")
+    # (intervals, samples per interval); the last is the exporter's final.
+    SWEEP = {"quick": ((25, 1), (100, 1)),
+             "full": ((10, 1), (25, 1), (50, 1), (100, 1), (200, 1), (255, 4))}
 
     def missing(self, ctx):
         if not _executable(ctx.tool(EXPORTER)):
@@ -270,18 +276,26 @@ class PovRay(Adapter):
 
     def settings(self, ctx, scene):
         values = self.SWEEP[ctx.mode] if scene.has_medium else self.SWEEP[ctx.mode][-1:]
-        return [("intervals %d" % n, {"intervals": n}) for n in values]
+        return [self._setting(n, k) for n, k in values]
+
+    @staticmethod
+    def _setting(intervals, samples):
+        label = "intervals %d" % intervals + (", %d samples" % samples if samples > 1 else "")
+        return (label, {"intervals": intervals, "samples": samples})
 
     def hard_case_settings(self, ctx):
-        return [("user", "intervals 200", {"intervals": 200})]
+        return [("user",) + self._setting(255, 4)]
 
     def render(self, ctx, scene_path, params, work, log):
         _export(ctx, scene_path, "pov", work / "scene.pov", log)
         pov = work / "scene.pov"
         text = pov.read_text()
         text, n = re.subn(r"(?m)^(\s*intervals\s+)\d+", r"\g<1>%d" % params["intervals"], text)
-        if n == 0 and re.search(r"\bmedia\s*\{", text):
-            raise RunFailed("the exported .pov has media but no `intervals` line to set")
+        text, k = re.subn(r"(?m)^(\s*samples\s+)\d+\s*,\s*\d+",
+                          r"\g<1>%d, %d" % (params["samples"], params["samples"]), text)
+        if (n == 0 or k == 0) and re.search(r"\bmedia\s*\{", text):
+            raise RunFailed("the exported .pov has media but no `intervals` or "
+                            "`samples` line to set")
         pov.write_text(text)
         # POV-Ray wants a writable home for its user configuration.
         env = {"HOME": str(work)}

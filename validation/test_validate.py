@@ -169,7 +169,7 @@ class HardCasesTest(unittest.TestCase):
                                          rel_tol=1e-9))
 
     def test_bounds(self):
-        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.20)
+        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.10)
         self.assertEqual(hard_cases.bound_for("gl_shafts", "case", "base", "quick"),
                          hard_cases.bound_for("gl_shafts", "user", "base", "quick"))
         self.assertIsNone(hard_cases.bound_for("eevee", "user", "base", "full"))
