@@ -41,6 +41,12 @@ def _rel(path, base):
     return os.path.relpath(path, base).replace(os.sep, "/")
 
 
+def _num(v, fmt):
+    """A number for tables; "n/a" when the comparison gave none (NaN or
+    infinity in the image, which JSON writes as null)."""
+    return fmt % v if v is not None else "n/a"
+
+
 def _time_of(run):
     """The time a run is judged by: the renderer's own, else the wall time."""
     t = run.get("tool_seconds")
@@ -211,7 +217,7 @@ def _scene_section(s, results, base):
         mm = run.get("metrics_masked")
         out.append("<tr><td>%s</td><td>%s%s</td><td class=num>%s</td><td class=num>%s</td>"
                    "<td class=num>%s</td>%s<td class=num>%s</td><td class=num>%s</td>"
-                   "<td class=num>%.3g</td><td class=num>%.4f</td><td class=num>%s</td>"
+                   "<td class=num>%s</td><td class=num>%s</td><td class=num>%s</td>"
                    "<td>%s</td><td>%s</td></tr>" % (
                        label, _e(run["label"]), ' <span class="note">(cached)</span>' if run.get("cached") else "",
                        _e(fmt_seconds(run.get("tool_seconds"))), _e(fmt_seconds(run.get("wall_seconds"))),
@@ -220,7 +226,7 @@ def _scene_section(s, results, base):
                        else ("<td></td>" if masked else ""),
                        _e(fmt_percent(m["mean_rel"])),
                        "%.1f dB" % m["psnr"] if m.get("psnr") is not None else "identical",
-                       m["max_abs"], m["scale"],
+                       _num(m.get("max_abs"), "%.3g"), _num(m.get("scale"), "%.4f"),
                        '<span class="fail">%d</span>' % m["bad_values"] if m["bad_values"] else "0",
                        _thumb(run.get("png"), base), _thumb(run.get("diff_png"), base)))
     out.append("</table>")
@@ -389,11 +395,11 @@ def summary_markdown(results):
                     (run.get("error") or run.get("compare_error") or "").replace("|", "/")[:200]))
                 continue
             masked = run.get("metrics_masked")
-            out.append("| %s | %s | %s | %s | %s | %s | %.3g | %.3f |" % (
+            out.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 rix[run["renderer"]]["label"], run["label"], fmt_seconds(_time_of(run)),
                 fmt_percent(mm["rel_rms"]), fmt_percent(masked["rel_rms"]) if masked else "",
                 "%.1f dB" % mm["psnr"] if mm.get("psnr") is not None else "identical",
-                mm["max_abs"], mm["scale"]))
+                _num(mm.get("max_abs"), "%.3g"), _num(mm.get("scale"), "%.3f")))
         out.append("")
     hc = results.get("hard_cases")
     if hc:
