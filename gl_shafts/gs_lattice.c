@@ -28,7 +28,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
                            int nu, int nv, int planes, double map[6],
                            sh_error *err) {
   int nw = planes + 1;
-  size_t n = (size_t)nu * nv * nw * 3;
+  size_t n = (size_t)nu * nv * nw * 4;
   if (n > lat->cap) {
     float *d = realloc(lat->data, n * sizeof *d);
     if (!d) return sh_error_set(err, SH_ERR_NOMEM, "out of memory for the lattice");
@@ -53,14 +53,15 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
         o[0] = (float)xi.x;
         o[1] = (float)xi.y;
         o[2] = (float)xi.z;
-        o += 3;
+        o[3] = 1.0f;
+        o += 4;
       }
     }
   }
   if (!lat->tex || lat->nu != nu || lat->nv != nv || lat->nw != nw) {
     if (lat->tex) glDeleteTextures(1, &lat->tex);
     glCreateTextures(GL_TEXTURE_3D, 1, &lat->tex);
-    glTextureStorage3D(lat->tex, 1, GL_RGB32F, nu, nv, nw);
+    glTextureStorage3D(lat->tex, 1, GL_RGBA32F, nu, nv, nw);
     glTextureParameteri(lat->tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(lat->tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(lat->tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -71,7 +72,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
     lat->nw = nw;
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage3D(lat->tex, 0, 0, 0, 0, nu, nv, nw, GL_RGB, GL_FLOAT, lat->data);
+  glTextureSubImage3D(lat->tex, 0, 0, 0, 0, nu, nv, nw, GL_RGBA, GL_FLOAT, lat->data);
   /* Lattice point i sits at texel centre (i + 0.5) / nu. */
   map[0] = (nu - 1) / ((x1 - x0) * nu);
   map[1] = 0.5 / nu - x0 * map[0];

@@ -16,11 +16,26 @@ void gs__defines(char *buf, size_t size, const sh_scene *scene,
     case SH_PHASE_NISHITA_MURKY: phase = 3; break;
     case SH_PHASE_RAYLEIGH: phase = 4; break;
     }
+  const sh_vec3 t = scene->medium.sigma_t;  /* 0 without a medium */
+  int grey = !scene->medium.present || (t.x == t.y && t.y == t.z);
+  /* The spot profile's shape: smoothstep or hard edge; exponent 0, 1 or
+   * other (pow). */
+  int smooth = l && l->type == SH_LIGHT_SPOT && l->cos_inner > l->cos_outer;
+  int expo = !l || l->type != SH_LIGHT_SPOT || l->exponent == 0 ? 0
+             : l->exponent == 1 ? 1 : 2;
+  const sh_medium *m = &scene->medium;
+  int inside = l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
+               l->position.x >= m->bmin.x && l->position.x <= m->bmax.x &&
+               l->position.y >= m->bmin.y && l->position.y <= m->bmax.y &&
+               l->position.z >= m->bmin.z && l->position.z <= m->bmax.z;
   snprintf(buf, size,
            "#define LIGHT_TYPE %d\n#define HAS_MAP %d\n#define SHADOW %d\n"
-           "#define CONE_CLIP %d\n#define PHASE %d\n%s",
+           "#define CONE_CLIP %d\n#define PHASE %d\n#define GREY_SIGMA %d\n"
+           "#define SPOT_SMOOTH %d\n#define SPOT_EXPONENT %d\n"
+           "#define LIGHT_INSIDE %d\n%s",
            type, l ? l->has_map : 0, ls ? (int)ls->shadow : 0,
-           ls ? ls->cone_clip : 0, phase, extra ? extra : "");
+           ls ? ls->cone_clip : 0, phase, grey, smooth, expo, inside,
+           extra ? extra : "");
 }
 
 void gs__set_view_uniforms(GLuint prog, const gs__view *view,

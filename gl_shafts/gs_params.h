@@ -12,7 +12,8 @@
 #include "sh_scene.h"
 
 /* Writes the variant's #define lines for light ls (NULL: no light) into
- * buf: LIGHT_TYPE, HAS_MAP, SHADOW, CONE_CLIP and PHASE, then `extra`. */
+ * buf: LIGHT_TYPE, HAS_MAP, SHADOW, CONE_CLIP, PHASE, GREY_SIGMA,
+ * SPOT_SMOOTH, SPOT_EXPONENT and LIGHT_INSIDE, then `extra`. */
 void gs__defines(char *buf, size_t size, const sh_scene *scene,
                  const gs__light_setup *ls, const char *extra);
 

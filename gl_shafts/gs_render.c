@@ -123,27 +123,29 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
 static sh_status upload_map(const sh_light *l, int res, GLuint *out, sh_error *err) {
   const sh_image *img = &l->map;
   int w = res ? res : img->width, h = res ? res : img->height;
-  const float *data = img->rgb;
-  float *tmp = NULL;
-  if (res) {
-    tmp = malloc((size_t)w * h * 3 * sizeof *tmp);
-    if (!tmp) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-    for (int y = 0; y < h; y++)
-      for (int x = 0; x < w; x++)
-        sh_image_lookup(img, (x + 0.5) / w, (y + 0.5) / h, tmp + 3 * ((size_t)y * w + x));
-    data = tmp;
-  }
+  /* RGBA: llvmpipe samples four-channel float textures faster than RGB. */
+  float *rgba = malloc((size_t)w * h * 4 * sizeof *rgba);
+  if (!rgba) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  for (int y = 0; y < h; y++)
+    for (int x = 0; x < w; x++) {
+      float *o = rgba + 4 * ((size_t)y * w + x);
+      if (res)
+        sh_image_lookup(img, (x + 0.5) / w, (y + 0.5) / h, o);
+      else
+        memcpy(o, img->rgb + 3 * ((size_t)y * w + x), 3 * sizeof *o);
+      o[3] = 1.0f;
+    }
   GLuint t;
   glCreateTextures(GL_TEXTURE_2D, 1, &t);
-  glTextureStorage2D(t, 1, GL_RGB32F, w, h);
+  glTextureStorage2D(t, 1, GL_RGBA32F, w, h);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   /* Row 0 (the image's top) at t = 0, as sh_image_lookup reads it. */
-  glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGB, GL_FLOAT, data);
+  glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
   glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  free(tmp);
+  free(rgba);
   *out = t;
   return gs__gl_check("uploading a light map", err);
 }

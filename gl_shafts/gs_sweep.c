@@ -137,8 +137,8 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   if (st != SH_OK) return st;
 
   char extra[128], defs[640];
-  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n",
-           job->lattice == NULL, job->jitter);
+  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define SAMPLES %d\n",
+           job->lattice == NULL, job->jitter, getenv("GS_SAMPLES") ? atoi(getenv("GS_SAMPLES")) : 0);
   gs__defines(defs, sizeof defs, job->scene, ls, extra);
   GLuint prog;
   st = gs__program_get(progs, &gs__glsl_plane_vert, &gs__glsl_plane_frag, defs,

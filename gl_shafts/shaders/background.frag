@@ -5,6 +5,6 @@ layout(location = 1) out vec4 o_depth;
 
 void main() {
   vec3 d = normalize(view_ray(gl_FragCoord.xy));
-  o_color = vec4(u_background * exp(-u_sigma_t * medium_len_ray(u_eye, d)), 0.0);
+  o_color = vec4(u_background * atten(medium_len_ray(u_eye, d)), 0.0);
   o_depth = vec4(BIG);
 }

@@ -9,6 +9,10 @@
 //               3 Nishita murky, 4 Rayleigh
 //   XI_EXACT    1: xi per fragment; 0: interpolated from the lattice
 //   JITTER      1: jittered sample depth within each plane's slab
+//   GREY_SIGMA  1 if sigma_t is the same in R, G and B
+//   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one
+//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent
+//   LIGHT_INSIDE 1 if a point or spot light is inside the medium's box
 // Conventions: p is a world point; z is view depth, the distance along the
 // camera's forward axis, so the pixel ray is u_eye + z * d with d the
 // unnormalised direction of view_ray (d . forward = 1).
@@ -33,6 +37,18 @@
 #endif
 #ifndef JITTER
 #define JITTER 0
+#endif
+#ifndef GREY_SIGMA
+#define GREY_SIGMA 0
+#endif
+#ifndef LIGHT_INSIDE
+#define LIGHT_INSIDE 0
+#endif
+#ifndef SPOT_SMOOTH
+#define SPOT_SMOOTH 1
+#endif
+#ifndef SPOT_EXPONENT
+#define SPOT_EXPONENT 2
 #endif
 
 const float PI = 3.14159265358979;
@@ -100,6 +116,15 @@ float medium_len_ray(vec3 p, vec3 w) {
   return max(t.y - t.x, 0.0);
 }
 
+// Transmittance over a length inside the medium.
+vec3 atten(float len) {
+#if GREY_SIGMA
+  return vec3(exp(-u_sigma_t.x * len));
+#else
+  return exp(-u_sigma_t * len);
+#endif
+}
+
 // Distance from p, inside the box, to the box's boundary along unit w.
 float box_exit(vec3 p, vec3 w) {
   vec3 t = (mix(u_bmin, u_bmax, step(0.0, w)) - p) * safe_inv(w);
@@ -127,13 +152,17 @@ float phase(float c) {
 
 // The spot profile at cos(theta) (sh_spot_profile).
 float spot_profile(float c) {
-  if (c < u_spot.x) return 0.0;
-  float f = 1.0, w = u_spot.y - u_spot.x;
-  if (w > 0.0 && c < u_spot.y) {
-    float u = (c - u_spot.x) / w;
-    f = u * u * (3.0 - 2.0 * u);
-  }
-  if (u_spot.z != 0.0) f *= pow(max(c, 0.0), u_spot.z);
+#if SPOT_SMOOTH
+  float u = clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0);
+  float f = u * u * (3.0 - 2.0 * u);
+#else
+  float f = c >= u_spot.x ? 1.0 : 0.0;
+#endif
+#if SPOT_EXPONENT == 1
+  f *= max(c, 0.0);
+#elif SPOT_EXPONENT == 2
+  f *= pow(max(c, 0.0), u_spot.z);
+#endif
   return f;
 }
 
@@ -165,12 +194,12 @@ vec3 light_pattern(vec3 p) {
 vec3 light_incident(vec3 p, out vec3 wi) {
 #if LIGHT_TYPE == 2
   wi = -u_ldir;
-  return u_lpower * light_pattern(p) * exp(-u_sigma_t * medium_len_ray(p, wi));
+  return u_lpower * light_pattern(p) * atten(medium_len_ray(p, wi));
 #else
   vec3 tol = u_lpos - p;
   float r2 = max(dot(tol, tol), 1e-30);
   wi = tol * inversesqrt(r2);
-  return u_lpower * light_pattern(p) * exp(-u_sigma_t * medium_len(p, u_lpos)) / r2;
+  return u_lpower * light_pattern(p) * atten(medium_len(p, u_lpos)) / r2;
 #endif
 }
 

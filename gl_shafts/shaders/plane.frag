@@ -3,8 +3,20 @@
 // integrated over the part of the plane's slab [z_front, z_back] that the
 // pixel's ray spends in the lit medium (the interval texture). A view depth
 // step dz is a ray length dt = dz |d|, |d| = 1 / cos(angle to the view
-// axis). The lattice (or xi_r2_exact) gives xi * r^2; 1 / r^2 is integrated
-// exactly.
+// axis). xi comes from the lattice (as xi r^2) or is evaluated here.
+//
+// For point and spot lights the part is parametrised by the angle theta it
+// subtends at the light: with h the light's distance from the ray, b the
+// ray length to the foot F of the perpendicular from the light, and e the
+// unit vector from F towards the light, the point at angle theta is
+// F + h tan(theta) dn, its distance to the light r = h / cos(theta), the
+// direction to the light wi = cos(theta) e - sin(theta) dn, and
+// dt / r^2 = dtheta / h. So 1/r^2 integrates exactly, and the rest of the
+// integrand (phase, transmittance, pattern, visibility) is sampled at equal
+// steps of theta: one step per u_sub_angle radians (at least one per
+// plane), which is one sample in most fragments and many where the ray
+// passes near the light. This is the reference's equiangular sampling,
+// stratified by the planes.
 flat in vec2 v_slab;
 flat in float v_plane;
 layout(binding = 3) uniform sampler2D u_interval;
@@ -14,34 +26,28 @@ uniform vec2 u_xi_z;  // and z * x + y
 uniform float u_inv_sub_angle; // 1 / the largest angle one sample stands for
 layout(location = 0) out vec4 o_color;
 
-// xi of eq. 6 at p without its 1 / r^2 (sigma_s p(alpha) Tr_light Tr_eye),
-// cam_len being the length of the ray inside the medium before p.
-vec3 xi_r2_exact(vec3 p, vec3 dn, float cam_len) {
-#if LIGHT_TYPE == 2
-  vec3 wi = -u_ldir;
-  float light_len = box_exit(p, wi);
-#else
-  vec3 tol = u_lpos - p;
-  float r = max(length(tol), 1e-30);
-  vec3 wi = tol / r;
-  float light_len = min(box_exit(p, wi), r);
-#endif
-  return u_sigma_s * phase(dot(wi, dn)) * exp(-u_sigma_t * (light_len + cam_len));
+vec3 xi_lattice(vec2 ndc, float z) {
+  return texture(u_xi, vec3(ndc.x * u_xi_xy.x + u_xi_xy.y,
+                            ndc.y * u_xi_xy.z + u_xi_xy.w,
+                            z * u_xi_z.x + u_xi_z.y)).rgb;
 }
 
-// The integrand but for dt / r^2 at view depth z of the pixel's ray:
-// xi r^2 * pattern * visibility.
-vec3 integrand(float z, vec3 d, float dl, vec3 dn, float entry, vec2 ndc) {
-  vec3 p = u_eye + z * d;
-#if XI_EXACT
-  vec3 xi = xi_r2_exact(p, dn, (z - entry) * dl);
+float jitter_offset() {
+#if JITTER
+  // Interleaved gradient noise, rotated by the golden ratio from plane to
+  // plane: a stratified, per-pixel offset in [0, 1).
+  float u = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+  return fract(u + 0.618034 * v_plane);
 #else
-  vec3 xi = texture(u_xi, vec3(ndc.x * u_xi_xy.x + u_xi_xy.y,
-                               ndc.y * u_xi_xy.z + u_xi_xy.w,
-                               z * u_xi_z.x + u_xi_z.y)).rgb;
+  return 0.5;
 #endif
-  return xi * light_pattern(p) * shadow_at(p);
 }
+
+#ifndef SAMPLES
+#define SAMPLES 0
+#endif
+
+#if LIGHT_TYPE == 2
 
 void main() {
   vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
@@ -50,41 +56,138 @@ void main() {
   vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
   vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
   float dl = length(d);
-  vec3 dn = d / dl;
-#if JITTER
-  // Interleaved gradient noise, rotated by the golden ratio from plane to
-  // plane: a stratified, per-pixel offset.
-  float u = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-  u = fract(u + 0.618034 * v_plane);
+  float z = mix(lo, hi, jitter_offset());
+  vec3 p = u_eye + z * d;
+  vec3 wi = -u_ldir;
+#if XI_EXACT
+  vec3 xi = u_sigma_s * phase(dot(wi, d) / dl) *
+            atten(box_exit(p, wi) + (z - iv.z) * dl);
 #else
-  float u = 0.5;
+  vec3 xi = xi_lattice(ndc, z);
 #endif
-#if LIGHT_TYPE == 2
-  // Directional light: dt = dz |d|, sampled at the fraction u of the part.
-  vec3 sum = integrand(mix(lo, hi, u), d, dl, dn, iv.z, ndc) * ((hi - lo) * dl);
+  o_color = vec4(u_lpower * xi * light_pattern(p) * shadow_at(p) * ((hi - lo) * dl), 0.0);
+}
+
 #else
-  // Point and spot lights: the 1 / r^2 of xi integrates exactly over the
-  // part, as the angle it subtends at the light: with h the light's distance
-  // from the ray and b the ray length to its foot, the integral of dt / r^2
-  // from t0 to t1 is (atan((t1 - b) / h) - atan((t0 - b) / h)) / h. The
-  // rest of the integrand is sampled at equal steps of that angle (as the
-  // reference's equiangular sampling does), one step per u_sub_angle
-  // radians: one sample in most of the slab's parts, more where the ray
-  // passes near the light, whose pattern then sweeps by within a slab.
+
+// Per-fragment constants of the angle parametrisation.
+vec3 g_foot, g_e, g_dn;
+float g_h, g_b, g_entry, g_dl;
+vec2 g_ndc;
+#if LIGHT_TYPE == 1
+float g_ea, g_da; // e . axis, dn . axis
+#if HAS_MAP
+float g_er, g_dr, g_eu, g_du; // e and dn . the map's right and up
+#endif
+#endif
+#if SHADOW == 1
+vec4 g_qf, g_qd; // the shadow lookup of the foot, and of dn
+#endif
+
+// The integrand but for dt / r^2 at the angle (c, s) = (cos, sin) theta.
+vec3 sample_at(float c, float s) {
+  float k = g_h * s / c;          // ray length from the foot
+  vec3 wi = c * g_e - s * g_dn;   // towards the light
+#if XI_EXACT && LIGHT_INSIDE
+  float light_len = g_h / c; // r: the light is inside the medium's box
+  vec3 v = u_sigma_s * phase(-s) * atten(light_len + (g_b + k - g_entry));
+#elif XI_EXACT
+  vec3 p = g_foot + k * g_dn;
+  float light_len = min(box_exit(p, wi), g_h / c);
+  vec3 v = u_sigma_s * phase(-s) * atten(light_len + (g_b + k - g_entry));
+#else
+  vec3 v = xi_lattice(g_ndc, (g_b + k) / g_dl);
+#endif
+#if LIGHT_TYPE == 1
+  float cl = s * g_da - c * g_ea; // cos of the angle from the spot's axis
+  v *= spot_profile(cl);
+#if HAS_MAP
+  vec2 xy = vec2(s * g_dr - c * g_er, s * g_du - c * g_eu) * (u_spot.w / cl);
+  v *= (cl > 0.0 && abs(xy.x) <= 1.0 && abs(xy.y) <= 1.0)
+           ? texture(u_map, vec2(0.5 * (xy.x + 1.0), 0.5 * (1.0 - xy.y))).rgb
+           : vec3(0.0);
+#endif
+#endif
+#if SHADOW == 1
+  vec4 q = g_qf + k * g_qd;
+  v *= texture(u_shadow2d, q.xyz / q.w);
+#elif SHADOW == 2
+  vec3 a = abs(wi);
+  v *= texture(u_shadowcube, vec4(-wi, u_shadow_near * c / (g_h * max(a.x, max(a.y, a.z)))));
+#endif
+  return v;
+}
+
+void main() {
+  vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
+  float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
+  if (!(hi > lo)) discard;
+  g_ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
+  vec3 d = u_fwd + g_ndc.x * u_rx + g_ndc.y * u_uy;
+  g_dl = length(d);
+  g_dn = d / g_dl;
   vec3 q = u_eye - u_lpos;
-  float b = -dot(q, dn);
-  float h = max(length(q + b * dn), 1e-6 * (abs(b) + 1.0));
-  float ta = (lo * dl - b) / h, tb = (hi * dl - b) / h;
-  float dtheta = atan(tb - ta, 1.0 + ta * tb);
+  g_b = -dot(q, g_dn);
+  g_foot = u_eye + g_b * g_dn;
+  vec3 ev = u_lpos - g_foot;
+  g_h = max(length(ev), 1e-6 * (abs(g_b) + 1.0));
+  g_e = ev / g_h;
+  g_entry = iv.z * g_dl;
+#if LIGHT_TYPE == 1
+  g_ea = dot(g_e, u_ldir);
+  g_da = dot(g_dn, u_ldir);
+#if HAS_MAP
+  g_er = dot(g_e, u_map_right);
+  g_dr = dot(g_dn, u_map_right);
+  g_eu = dot(g_e, u_map_up);
+  g_du = dot(g_dn, u_map_up);
+#endif
+#endif
+#if SHADOW == 1
+  g_qf = u_shadow_mat * vec4(g_foot, 1.0);
+  g_qd = u_shadow_mat * vec4(g_dn, 0.0);
+#endif
+  // The part's ends as angles: tan(theta) = (t - b) / h, as (cos, sin).
+  float ta = (lo * g_dl - g_b) / g_h, tb = (hi * g_dl - g_b) / g_h;
+  float ca = inversesqrt(1.0 + ta * ta), sa = ta * ca;
+  float cb = inversesqrt(1.0 + tb * tb), sb = tb * cb;
+  float dtheta = atan(ca * sb - sa * cb, ca * cb + sa * sb);
+  // n samples at the middles (or jittered points) of n equal steps. The
+  // steps are small (at most u_sub_angle, below 30 degrees), so their
+  // half-angle tangents come from a series, and the angles by rotation:
+  // no trigonometric function but the atan above. llvmpipe runs every
+  // branch and every loop to its longest lane, so the code has none but
+  // this loop.
+#if SAMPLES > 0
+  // A fixed number of samples, unrolled.
+  const int n = SAMPLES;
+#else
   int n = int(clamp(ceil(dtheta * u_inv_sub_angle), 1.0, 64.0));
+#endif
   float step = dtheta / float(n);
+  float x = 0.5 * step, x2 = x * x;
+  float tau = x * (1.0 + x2 * (1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (17.0 / 315.0))));
+  float inv = 1.0 / (1.0 + tau * tau);
+  float cs = (1.0 - tau * tau) * inv, ss = 2.0 * tau * inv; // the step
+#if JITTER
+  x = jitter_offset() * step;
+  x2 = x * x;
+  tau = 0.5 * x * (1.0 + x2 * (1.0 / 12.0 + x2 * (1.0 / 120.0)));
+  inv = 1.0 / (1.0 + tau * tau);
+  float c0 = (1.0 - tau * tau) * inv, s0 = 2.0 * tau * inv; // the offset
+#else
+  float c0 = sqrt(0.5 * (1.0 + cs)), s0 = tau * c0; // half a step
+#endif
+  float c = ca * c0 - sa * s0, s = sa * c0 + ca * s0;
   vec3 sum = vec3(0.0);
   for (int i = 0; i < n; i++) {
-    float tu = tan((float(i) + u) * step);
-    float z = clamp((b + h * (ta + tu) / (1.0 - ta * tu)) / dl, lo, hi);
-    sum += integrand(z, d, dl, dn, iv.z, ndc);
+    sum += sample_at(c, s);
+    float c2 = c * cs - s * ss;
+    s = s * cs + c * ss;
+    c = c2;
   }
-  sum *= step / h;
-#endif
-  o_color = vec4(u_lpower * sum, 0.0);
+  sum *= 1.0 / float(n);
+  o_color = vec4(u_lpower * sum * (dtheta / g_h), 0.0);
 }
+
+#endif

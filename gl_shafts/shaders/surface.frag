@@ -54,6 +54,6 @@ void main() {
       L += f * e * vis;
     }
   }
-  o_color = vec4(L * exp(-u_sigma_t * medium_len(u_eye, p)), 0.0);
+  o_color = vec4(L * atten(medium_len(u_eye, p)), 0.0);
   o_depth = vec4(dot(view, u_fwd));
 }
