@@ -42,7 +42,7 @@ static void usage(FILE *f) {
 "  --ref-spp N           reference samples (default 1024); 0: no error column\n"
 "  --cache DIR           where references are kept (default: .)\n"
 "  --planes N, --lattice NU NV, --xi lattice|exact, --jitter, --no-jitter,\n"
-"  --shadow-map-res S, --light-map-res R, --sub-angle DEG\n"
+"  --shadow-map-res S, --light-map-res R, --sub-angle DEG, --sub-texels T\n"
 "                        as gl_shafts (default: its defaults)\n"
 "  --sweep-planes LIST   comma-separated plane counts to measure in turn\n"
 "  --sweep-lattice LIST  comma-separated lattice sizes (n for n x n)\n"
@@ -53,7 +53,7 @@ static void usage(FILE *f) {
 
 typedef struct config {
   long planes, lu, lv, smres, lmres;
-  double sub_angle;
+  double sub_angle, sub_texels;
   sh_xi_mode xi;
   int jitter;
 } config;
@@ -127,6 +127,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
   if (c->xi != SH_XI_DEFAULT) o.xi = c->xi;
   if (c->jitter >= 0) o.jitter = c->jitter;
   if (c->sub_angle > 0) o.sub_angle_deg = c->sub_angle;
+  if (c->sub_texels > 0) o.sub_texels = c->sub_texels;
   double t0 = sh_seconds();
   gs_renderer *r = NULL;
   sh_status st = gs_renderer_create(scene, &o, &r, err);
@@ -193,7 +194,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
 }
 
 int main(int argc, char **argv) {
-  config base = {0, 0, 0, 0, 0, 0, SH_XI_DEFAULT, -1};
+  config base = {0, 0, 0, 0, 0, 0, 0, SH_XI_DEFAULT, -1};
   long w = 0, h = 0, frames = 5, spp = 1024;
   long sweep_p[32], sweep_l[32];
   int np = 0, nl = 0, sweep_xi = 0;
@@ -251,6 +252,8 @@ int main(int argc, char **argv) {
       ok = sh_cli_int(TOOL, o, v, 1, 16384, &base.smres);
     } else if (!strcmp(o, "--light-map-res")) {
       ok = sh_cli_int(TOOL, o, v, 1, 16384, &base.lmres);
+    } else if (!strcmp(o, "--sub-texels")) {
+      ok = sh_cli_double(TOOL, o, v, &base.sub_texels) && base.sub_texels > 0;
     } else if (!strcmp(o, "--sub-angle")) {
       ok = sh_cli_double(TOOL, o, v, &base.sub_angle) && base.sub_angle > 0;
     } else if (!strcmp(o, "--xi")) {

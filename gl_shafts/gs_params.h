@@ -1,28 +1,31 @@
 /* What the shaders need to know about the scene: the #defines that select a
- * program variant for a light (common.glsl lists them) and the uniforms of
- * the camera, the medium and a light. */
+ * program variant for a light (common.glsl lists them) and the parameters
+ * (gs_program.h) of the camera, the medium and a light. */
 #ifndef GS_PARAMS_H
 #define GS_PARAMS_H
 
-#include <stddef.h>
-
-#include "gs_gl.h"
 #include "gs_lightvol.h"
+#include "gs_program.h"
 #include "gs_view.h"
 #include "sh_scene.h"
 
-/* Writes the variant's #define lines for light ls (NULL: no light) into
- * buf: LIGHT_TYPE, HAS_MAP, SHADOW, CONE_CLIP, PHASE, GREY_SIGMA,
- * SPOT_SMOOTH, SPOT_EXPONENT and LIGHT_INSIDE, then `extra`. */
-void gs__defines(char *buf, size_t size, const sh_scene *scene,
-                 const gs__light_setup *ls, const char *extra);
+/* What the passes of a frame share. */
+typedef struct gs__frame {
+  const sh_scene *scene;
+  const gs__view *view;
+  gs__programs *progs;
+  gs__params *params; /* reused by every draw */
+  int bake;           /* bake parameters into programs (gs_program.h) */
+} gs__frame;
 
-/* Sets the camera's and the medium's uniforms (u_eye ... u_g). Without a
- * medium the coefficients are 0. */
-void gs__set_view_uniforms(GLuint prog, const gs__view *view,
-                           const sh_scene *scene);
-
-/* Sets a light's uniforms (u_lpos ... u_shadow_near). */
-void gs__set_light_uniforms(GLuint prog, const gs__light_setup *ls);
+/* Starts the frame's parameter block for a draw with light ls (NULL: no
+ * light):
+ * resets it, then appends the variant's #define lines (LIGHT_TYPE, HAS_MAP,
+ * SHADOW, CONE_CLIP, PHASE, GREY_SIGMA, SPOT_SMOOTH, SPOT_EXPONENT and
+ * LIGHT_INSIDE), `extra` lines, and the camera's, the medium's and the
+ * light's parameters (u_eye ... u_g, u_lpos ... u_shadow_near). Without a
+ * medium its coefficients are 0. */
+gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
+                             const char *extra);
 
 #endif

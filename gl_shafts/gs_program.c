@@ -1,5 +1,6 @@
 #include "gs_program.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -133,4 +134,127 @@ void gs__uniform_mat4(GLuint prog, const char *name, const sh_mat4 *m) {
   for (int r = 0; r < 4; r++)
     for (int c = 0; c < 4; c++) f[4 * r + c] = (float)m->m[r][c];
   glProgramUniformMatrix4fv(prog, loc, 1, GL_TRUE, f); /* row-major */
+}
+
+void gs__params_reset(gs__params *p, int bake) {
+  p->bake = bake;
+  p->len = 0;
+  p->n = 0;
+  p->nomem = 0;
+  if (p->text) p->text[0] = '\0';
+}
+
+void gs__params_free(gs__params *p) {
+  free(p->text);
+  free(p->value);
+  memset(p, 0, sizeof *p);
+}
+
+void gs__params_text(gs__params *p, const char *text) {
+  size_t n = strlen(text);
+  if (p->len + n + 1 > p->cap) {
+    size_t cap = p->cap ? 2 * p->cap : 4096;
+    while (cap < p->len + n + 1) cap *= 2;
+    char *t = realloc(p->text, cap);
+    if (!t) {
+      p->nomem = 1;
+      return;
+    }
+    p->text = t;
+    p->cap = cap;
+  }
+  memcpy(p->text + p->len, text, n + 1);
+  p->len += n;
+}
+
+/* A float as a GLSL literal that reads back as the same float. */
+static void literal(char *buf, size_t size, float v) {
+  snprintf(buf, size, "%.9g", (double)v);
+  if (!strpbrk(buf, ".eEn")) strncat(buf, ".0", size - strlen(buf) - 1);
+}
+
+static const char *const TYPES[17] = {NULL, "float", "vec2", "vec3", "vec4",
+                                      NULL, NULL, NULL, NULL, NULL, NULL,
+                                      NULL, NULL, NULL, NULL, NULL, "mat4"};
+
+static void param(gs__params *p, const char *name, int kind, const float *v) {
+  char line[1024];
+  if (p->bake) {
+    /* GLSL matrices are built column by column. */
+    int n = snprintf(line, sizeof line, "const %s %s = %s(", TYPES[kind], name, TYPES[kind]);
+    for (int i = 0; i < kind; i++) {
+      char lit[32];
+      literal(lit, sizeof lit, kind == 16 ? v[4 * (i % 4) + i / 4] : v[i]);
+      n += snprintf(line + n, sizeof line - (size_t)n, "%s%s", i ? ", " : "", lit);
+    }
+    snprintf(line + n, sizeof line - (size_t)n, ");\n");
+    gs__params_text(p, line);
+    return;
+  }
+  snprintf(line, sizeof line, "uniform %s %s;\n", TYPES[kind], name);
+  gs__params_text(p, line);
+  if (p->n == p->nvcap) {
+    int cap = p->nvcap ? 2 * p->nvcap : 32;
+    gs__param_value *nv = realloc(p->value, (size_t)cap * sizeof *nv);
+    if (!nv) {
+      p->nomem = 1;
+      return;
+    }
+    p->value = nv;
+    p->nvcap = cap;
+  }
+  gs__param_value *pv = &p->value[p->n++];
+  snprintf(pv->name, sizeof pv->name, "%s", name);
+  pv->kind = kind;
+  memcpy(pv->v, v, (size_t)kind * sizeof *v);
+}
+
+void gs__param_f(gs__params *p, const char *name, double v) {
+  float f[1] = {(float)v};
+  param(p, name, 1, f);
+}
+
+void gs__param_2f(gs__params *p, const char *name, double x, double y) {
+  float f[2] = {(float)x, (float)y};
+  param(p, name, 2, f);
+}
+
+void gs__param_v3(gs__params *p, const char *name, sh_vec3 v) {
+  float f[3] = {(float)v.x, (float)v.y, (float)v.z};
+  param(p, name, 3, f);
+}
+
+void gs__param_4f(gs__params *p, const char *name, double x, double y,
+                  double z, double w) {
+  float f[4] = {(float)x, (float)y, (float)z, (float)w};
+  param(p, name, 4, f);
+}
+
+void gs__param_mat4(gs__params *p, const char *name, const sh_mat4 *m) {
+  float f[16];
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 4; c++) f[4 * r + c] = (float)m->m[r][c];
+  param(p, name, 16, f);
+}
+
+sh_status gs__program_use(gs__programs *c, const gs__glsl *vs,
+                          const gs__glsl *fs, gs__params *p, GLuint *out,
+                          sh_error *err) {
+  if (p->nomem) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  sh_status st = gs__program_get(c, vs, fs, p->text ? p->text : "", out, err);
+  if (st != SH_OK) return st;
+  glUseProgram(*out);
+  for (int i = 0; i < p->n; i++) {
+    const gs__param_value *v = &p->value[i];
+    GLint loc = glGetUniformLocation(*out, v->name);
+    if (loc < 0) continue;
+    switch (v->kind) {
+    case 1: glProgramUniform1f(*out, loc, v->v[0]); break;
+    case 2: glProgramUniform2f(*out, loc, v->v[0], v->v[1]); break;
+    case 3: glProgramUniform3f(*out, loc, v->v[0], v->v[1], v->v[2]); break;
+    case 4: glProgramUniform4f(*out, loc, v->v[0], v->v[1], v->v[2], v->v[3]); break;
+    default: glProgramUniformMatrix4fv(*out, loc, 1, GL_TRUE, v->v); break;
+    }
+  }
+  return SH_OK;
 }

@@ -31,6 +31,45 @@ sh_status gs__program_get(gs__programs *cache, const gs__glsl *vs,
 /* Deletes every program; the cache is empty afterwards. */
 void gs__programs_free(gs__programs *cache);
 
+/* The parameters of a draw (camera, medium, light, ...), declared at the
+ * top of its program's source: baked, as constants holding their values
+ * (llvmpipe loads every uniform at a cost in every fragment, so constants
+ * make the shaders much faster, at the price of a program per set of
+ * values, built when the values first occur); or as uniforms, set when the
+ * program is bound. Also carries the variant's #define lines. */
+typedef struct gs__param_value {
+  char name[32];
+  int kind; /* 1, 2, 3, 4 floats or 16 (a matrix, row-major) */
+  float v[16];
+} gs__param_value;
+
+typedef struct gs__params {
+  int bake;
+  char *text;        /* #defines and declarations */
+  size_t len, cap;
+  gs__param_value *value; /* uniforms to set (not baked) */
+  int n, nvcap;
+  int nomem;
+} gs__params;
+
+/* Empties the block (keeping its memory) and sets whether it bakes. */
+void gs__params_reset(gs__params *p, int bake);
+void gs__params_free(gs__params *p);
+/* Appends raw source text (#define lines). */
+void gs__params_text(gs__params *p, const char *text);
+void gs__param_f(gs__params *p, const char *name, double v);
+void gs__param_2f(gs__params *p, const char *name, double x, double y);
+void gs__param_v3(gs__params *p, const char *name, sh_vec3 v);
+void gs__param_4f(gs__params *p, const char *name, double x, double y,
+                  double z, double w);
+void gs__param_mat4(gs__params *p, const char *name, const sh_mat4 *m);
+
+/* The program of vs and fs with the block's text before common.glsl, bound
+ * (glUseProgram) with the block's uniforms set. */
+sh_status gs__program_use(gs__programs *cache, const gs__glsl *vs,
+                          const gs__glsl *fs, gs__params *p, GLuint *out,
+                          sh_error *err);
+
 /* Uniform setters by name. A name the program does not use (the compiler
  * drops unused uniforms) is ignored. */
 void gs__uniform_i(GLuint prog, const char *name, int v);

@@ -23,6 +23,7 @@ struct gs_renderer {
   gs__context *ctx;
   gs__view view;
   gs__programs progs;
+  gs__params params;
   gs__geometry geom;
   gs__target target;
   gs__sweep sweep;
@@ -46,6 +47,7 @@ gs_options gs_options_defaults(const sh_scene *scene) {
   o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
   o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
   o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
+  o.sub_texels = GS_DEFAULT_SUB_TEXELS;
   return o;
 }
 
@@ -69,9 +71,12 @@ sh_status gs_options_check(const gs_options *o, sh_error *err) {
     return sh_error_set(err, SH_ERR_ARG, "xi must be lattice or exact");
   if (o->jitter != 0 && o->jitter != 1)
     return sh_error_set(err, SH_ERR_ARG, "jitter must be 0 or 1");
-  if (!(o->sub_angle_deg > 0 && o->sub_angle_deg <= 180))
-    return sh_error_set(err, SH_ERR_ARG, "sub_angle must be in (0, 180] degrees, not %g",
+  if (!(o->sub_angle_deg > 0 && o->sub_angle_deg <= 30))
+    return sh_error_set(err, SH_ERR_ARG, "sub_angle must be in (0, 30] degrees, not %g",
                         o->sub_angle_deg);
+  if (!(o->sub_texels > 0 && o->sub_texels <= 1e6))
+    return sh_error_set(err, SH_ERR_ARG, "sub_texels must be in (0, 1e6], not %g",
+                        o->sub_texels);
   return SH_OK;
 }
 
@@ -218,6 +223,7 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
   const gs_options *o = &r->opt;
   sh_status st = gs__context_make_current(r->ctx, err);
   if (st != SH_OK) return st;
+  gs__frame fr = {scene, &r->view, &r->progs, &r->params, 1};
   double start = sh_seconds(), t = start;
 
   /* Lights: their volumes and shadow maps. */
@@ -225,16 +231,16 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
     gs__light_setup_free(&r->lights[i]);
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
     if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
-      st = gs__shadow_render(&r->shadows[i], scene, &r->lights[i],
-                             o->shadow_map_res, &r->geom, &r->progs, err);
+      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i],
+                             o->shadow_map_res, &r->geom, err);
       s.shadow_maps++;
     }
   }
   if (st == SH_OK) s.shadow_seconds = lap(&t);
 
   if (st == SH_OK)
-    st = gs__surface_render(scene, &r->view, &r->geom, r->lights, r->shadows,
-                            r->maps, &r->target, &r->progs, err);
+    st = gs__surface_render(&fr, &r->geom, r->lights, r->shadows, r->maps,
+                            &r->target, err);
   if (st == SH_OK) s.surface_seconds = lap(&t);
 
   gs__sweep_counts counts = {0, 0, 0};
@@ -243,9 +249,13 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
     if (!ls->vol->nfaces) continue;
     s.lights_swept++;
     double map[6] = {0, 0, 0, 0, 0, 0};
-    gs__sweep_job job = {scene, &r->view, ls, &r->shadows[i], r->maps[i],
+    const sh_light *l = &scene->lights[i];
+    int lmres = o->light_map_res;
+    gs__sweep_job job = {&fr, ls, &r->shadows[i], r->maps[i],
                          NULL, map, o->planes, o->jitter,
-                         o->sub_angle_deg * SH_PI / 180.0};
+                         o->sub_angle_deg * SH_PI / 180.0,
+                         o->sub_texels,
+                         lmres ? lmres : l->map.width, lmres ? lmres : l->map.height};
     if (o->xi == SH_XI_LATTICE) {
       st = gs__lattice_eval(&r->lattices[i], scene, &r->view, ls, o->lattice_u,
                             o->lattice_v, o->planes, map, err);
@@ -254,7 +264,7 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
       s.lattice_seconds += lap(&t);
     }
     if (st == SH_OK)
-      st = gs__sweep_light(&r->sweep, &job, &r->target, &r->progs, &counts, err);
+      st = gs__sweep_light(&r->sweep, &job, &r->target, &counts, err);
     s.plane_seconds += lap(&t);
   }
   s.planes = counts.planes;
@@ -291,6 +301,7 @@ void gs_renderer_free(gs_renderer *r) {
     gs__target_free(&r->target);
     gs__geometry_free(&r->geom);
     gs__programs_free(&r->progs);
+    gs__params_free(&r->params);
   }
   if (r->lights)
     for (int i = 0; i < r->nlights; i++) gs__light_setup_free(&r->lights[i]);

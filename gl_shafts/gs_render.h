@@ -47,7 +47,11 @@ typedef struct gs_options {
                                takes one sample per this angle (degrees)
                                its part of the ray subtends at the light,
                                so rays passing near a light are sampled
-                               finely; (0, 180] */
+                               finely (at most 64 samples); (0, 30] */
+  double sub_texels;        /* directional lights with a window: a plane's
+                               fragment takes one sample per this many
+                               texels of the window's pattern its part of
+                               the ray crosses (at most 64 samples) */
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). */
@@ -56,7 +60,8 @@ typedef struct gs_options {
 #define GS_DEFAULT_SHADOW_MAP_RES 1024
 #define GS_DEFAULT_XI SH_XI_EXACT
 #define GS_DEFAULT_JITTER 0
-#define GS_DEFAULT_SUB_ANGLE_DEG 1.0
+#define GS_DEFAULT_SUB_ANGLE_DEG 4.0
+#define GS_DEFAULT_SUB_TEXELS 4.0
 
 /* The defaults, overridden by the scene's render keys that are given. */
 gs_options gs_options_defaults(const sh_scene *scene);

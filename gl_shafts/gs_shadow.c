@@ -30,20 +30,18 @@ static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
   return gs__gl_check("allocating a shadow map", err);
 }
 
-sh_status gs__shadow_render(gs__shadow_map *sm, const sh_scene *scene,
+sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
                             const gs__light_setup *ls, int res,
-                            const gs__geometry *geom, gs__programs *progs,
-                            sh_error *err) {
+                            const gs__geometry *geom, sh_error *err) {
+  const sh_scene *scene = fr->scene;
   sh_status st = SH_OK;
   if (sm->kind != ls->shadow || sm->res != res || !sm->tex)
     st = alloc_map(sm, ls->shadow, res, err);
   GLuint prog[2] = {0, 0}; /* meshes, exact spheres */
-  if (st == SH_OK)
-    st = gs__program_get(progs, &gs__glsl_shadow_vert, &gs__glsl_shadow_frag,
-                         "", &prog[0], err);
-  if (st == SH_OK)
-    st = gs__program_get(progs, &gs__glsl_shadow_vert, &gs__glsl_shadow_frag,
-                         "#define SPHERE 1\n", &prog[1], err);
+  for (int k = 0; k < 2 && st == SH_OK; k++)
+    st = gs__program_use(fr->progs, &gs__glsl_shadow_vert, &gs__glsl_shadow_frag,
+                         gs__params_begin(fr, ls, k ? "#define SPHERE 1\n" : ""),
+                         &prog[k], err);
   if (st != SH_OK) return st;
   /* Two depths far apart along each texel's ray, for the exact spheres:
    * the near plane and 1/1000 of it (a thousand near distances away) for

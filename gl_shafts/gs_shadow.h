@@ -9,7 +9,7 @@
 
 #include "gs_geometry.h"
 #include "gs_lightvol.h"
-#include "gs_program.h"
+#include "gs_params.h"
 
 typedef struct gs__shadow_map {
   gs__shadow_kind kind;
@@ -19,10 +19,9 @@ typedef struct gs__shadow_map {
 
 /* Renders the light's shadow map into sm, (re)allocating its texture when
  * the kind or size changes. Leaves the viewport and framebuffer changed. */
-sh_status gs__shadow_render(gs__shadow_map *sm, const sh_scene *scene,
+sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
                             const gs__light_setup *ls, int res,
-                            const gs__geometry *geom, gs__programs *progs,
-                            sh_error *err);
+                            const gs__geometry *geom, sh_error *err);
 
 /* Binds the map to its texture unit (1 for 2D, 2 for cube maps). */
 void gs__shadow_bind(const gs__shadow_map *sm);

@@ -12,19 +12,15 @@
 
 #include "gs_geometry.h"
 #include "gs_lightvol.h"
-#include "gs_program.h"
+#include "gs_params.h"
 #include "gs_shadow.h"
 #include "gs_target.h"
-#include "gs_view.h"
-#include "sh_scene.h"
 
 /* Light i's setup is lights[i], its shadow map shadows[i] (used if its
  * setup asks for one) and its light map texture maps[i] (0 if none). */
-sh_status gs__surface_render(const sh_scene *scene, const gs__view *view,
-                             const gs__geometry *geom,
+sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
                              const gs__light_setup *lights,
                              const gs__shadow_map *shadows, const GLuint *maps,
-                             const gs__target *target, gs__programs *progs,
-                             sh_error *err);
+                             const gs__target *target, sh_error *err);
 
 #endif

@@ -49,7 +49,7 @@ static int reserve_verts(gs__sweep *sw, size_t n) {
 static int build_slabs(gs__sweep *sw, const gs__sweep_job *job, double *pixels) {
   enum { MAXPTS = 4 * GS__POLY_MAX_FACES * GS__POLY_MAX_FACE_VERTS };
   const gs__light_setup *ls = job->light;
-  const gs__view *view = job->view;
+  const gs__view *view = job->frame->view;
   sh_vec3 *pts = malloc(MAXPTS * sizeof *pts);
   double(*xy)[2] = malloc(MAXPTS * sizeof *xy);
   double(*hull)[2] = malloc(2 * MAXPTS * sizeof *hull);
@@ -96,18 +96,14 @@ done:
 }
 
 static sh_status interval_pass(const gs__sweep_job *job, const gs__target *t,
-                               gs__programs *progs, sh_error *err) {
+                               sh_error *err) {
   const gs__light_setup *ls = job->light;
-  char defs[512];
-  gs__defines(defs, sizeof defs, job->scene, ls, "");
+  gs__params *p = gs__params_begin(job->frame, ls, "");
+  gs__param_f(p, "u_depth", 0.0);
   GLuint prog;
-  sh_status st = gs__program_get(progs, &gs__glsl_screen_vert,
-                                 &gs__glsl_interval_frag, defs, &prog, err);
+  sh_status st = gs__program_use(job->frame->progs, &gs__glsl_screen_vert,
+                                 &gs__glsl_interval_frag, p, &prog, err);
   if (st != SH_OK) return st;
-  glUseProgram(prog);
-  gs__set_view_uniforms(prog, job->view, job->scene);
-  gs__set_light_uniforms(prog, ls);
-  gs__uniform_f(prog, "u_depth", 0.0);
   glBindFramebuffer(GL_FRAMEBUFFER, t->interval_fbo);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -123,8 +119,8 @@ static sh_status interval_pass(const gs__sweep_job *job, const gs__target *t,
 }
 
 sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
-                          const gs__target *t, gs__programs *progs,
-                          gs__sweep_counts *counts, sh_error *err) {
+                          const gs__target *t, gs__sweep_counts *counts,
+                          sh_error *err) {
   const gs__light_setup *ls = job->light;
   if (!ls->vol->nfaces) return SH_OK;
   if (!reserve_slabs(sw, (size_t)job->planes))
@@ -133,28 +129,30 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   int nslabs = build_slabs(sw, job, &pixels);
   if (nslabs < 0) return sh_error_set(err, SH_ERR_NOMEM, "out of memory for the planes");
   if (nslabs == 0) return SH_OK;
-  sh_status st = interval_pass(job, t, progs, err);
+  sh_status st = interval_pass(job, t, err);
   if (st != SH_OK) return st;
 
-  char extra[128], defs[640];
-  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define SAMPLES %d\n",
-           job->lattice == NULL, job->jitter, getenv("GS_SAMPLES") ? atoi(getenv("GS_SAMPLES")) : 0);
-  gs__defines(defs, sizeof defs, job->scene, ls, extra);
+  char extra[128];
+  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n",
+           job->lattice == NULL, job->jitter);
+  gs__params *p = gs__params_begin(job->frame, ls, extra);
+  gs__param_f(p, "u_near", job->frame->view->znear);
+  /* A spot's smooth edge is sampled at least once per its width. */
+  double sub = job->sub_angle;
+  const sh_light *l = ls->light;
+  if (l->type == SH_LIGHT_SPOT && l->inner_deg < l->outer_deg)
+    sub = fmin(sub, (l->outer_deg - l->inner_deg) * SH_PI / 180.0);
+  gs__param_f(p, "u_inv_sub_angle", 1.0 / sub);
+  gs__param_f(p, "u_inv_sub_texels", 1.0 / job->sub_texels);
+  gs__param_2f(p, "u_map_size", job->map_width, job->map_height);
+  const double *m = job->lattice_map;
+  gs__param_4f(p, "u_xi_xy", m[0], m[1], m[2], m[3]);
+  gs__param_2f(p, "u_xi_z", m[4], m[5]);
   GLuint prog;
-  st = gs__program_get(progs, &gs__glsl_plane_vert, &gs__glsl_plane_frag, defs,
-                       &prog, err);
+  st = gs__program_use(job->frame->progs, &gs__glsl_plane_vert, &gs__glsl_plane_frag,
+                       p, &prog, err);
   if (st != SH_OK) return st;
-  glUseProgram(prog);
-  gs__set_view_uniforms(prog, job->view, job->scene);
-  gs__set_light_uniforms(prog, ls);
-  gs__uniform_f(prog, "u_near", job->view->znear);
-  gs__uniform_f(prog, "u_inv_sub_angle", 1.0 / job->sub_angle);
-  if (job->lattice) {
-    const double *m = job->lattice_map;
-    gs__uniform_4f(prog, "u_xi_xy", m[0], m[1], m[2], m[3]);
-    gs__uniform_2f(prog, "u_xi_z", m[4], m[5]);
-    gs__lattice_bind(job->lattice);
-  }
+  if (job->lattice) gs__lattice_bind(job->lattice);
   if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(job->shadow);
   if (job->map) glBindTextureUnit(0, job->map);
   glBindTextureUnit(3, t->interval);

@@ -12,7 +12,7 @@
 
 #include "gs_lattice.h"
 #include "gs_lightvol.h"
-#include "gs_program.h"
+#include "gs_params.h"
 #include "gs_shadow.h"
 #include "gs_target.h"
 #include "gs_view.h"
@@ -28,8 +28,7 @@ typedef struct gs__sweep {
 } gs__sweep;
 
 typedef struct gs__sweep_job {
-  const sh_scene *scene;
-  const gs__view *view;
+  const gs__frame *frame;
   const gs__light_setup *light;
   const gs__shadow_map *shadow; /* used if the light's setup has a shadow */
   GLuint map;                   /* the light map texture, 0 if none */
@@ -38,6 +37,8 @@ typedef struct gs__sweep_job {
   int planes, jitter;
   double sub_angle;             /* radians a sample may span, seen from a
                                    point or spot light */
+  double sub_texels;            /* window texels a sample may span */
+  int map_width, map_height;    /* the light map texture's size */
 } gs__sweep_job;
 
 /* Counts for statistics. */
@@ -52,8 +53,8 @@ sh_status gs__sweep_init(gs__sweep *sw, sh_error *err);
 
 /* Adds one light's in-scattering to the target's image. */
 sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
-                          const gs__target *target, gs__programs *progs,
-                          gs__sweep_counts *counts, sh_error *err);
+                          const gs__target *target, gs__sweep_counts *counts,
+                          sh_error *err);
 
 void gs__sweep_free(gs__sweep *sw);
 

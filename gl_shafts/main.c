@@ -36,6 +36,8 @@ static void usage(FILE *f) {
 "                         render.jitter, else %s)\n"
 "  --sub-angle DEG        point and spot lights: one sample per DEG degrees that a\n"
 "                         plane's part of a ray subtends at the light (default %g)\n"
+"  --sub-texels T         directional lights with a window: one sample per T\n"
+"                         window texels a plane's part of a ray crosses (default %g)\n"
 "  --exposure E           PNG exposure in stops (default: render.exposure, else 0)\n"
 "  --stats FILE.json      write the time (split by stage) and counts as JSON\n"
 "  -q, --quiet            no messages but errors\n"
@@ -44,7 +46,8 @@ static void usage(FILE *f) {
 "Exit status: 0 on success, 2 for bad input (arguments, scene), 1 otherwise.\n",
           GS_DEFAULT_PLANES, GS_DEFAULT_LATTICE, GS_DEFAULT_LATTICE,
           GS_DEFAULT_SHADOW_MAP_RES, GS_DEFAULT_XI == SH_XI_EXACT ? "exact" : "lattice",
-          GS_DEFAULT_JITTER ? "on" : "off", GS_DEFAULT_SUB_ANGLE_DEG);
+          GS_DEFAULT_JITTER ? "on" : "off", GS_DEFAULT_SUB_ANGLE_DEG,
+          GS_DEFAULT_SUB_TEXELS);
 }
 
 #define MAX_OUTPUTS 8
@@ -56,7 +59,7 @@ typedef struct args {
   long planes, lattice_u, lattice_v, light_map_res, shadow_map_res;
   sh_xi_mode xi;
   int jitter; /* -1: not given */
-  double exposure, sub_angle;
+  double exposure, sub_angle, sub_texels;
   int has_exposure, quiet;
 } args;
 
@@ -109,8 +112,14 @@ static int parse_args(int argc, char **argv, args *a) {
       }
     } else if (!strcmp(o, "--sub-angle")) {
       ok = sh_cli_double(TOOL, o, v, &a->sub_angle);
-      if (ok && !(a->sub_angle > 0 && a->sub_angle <= 180)) {
-        fprintf(stderr, "%s: --sub-angle expects degrees in (0, 180], got '%s'\n", TOOL, v);
+      if (ok && !(a->sub_angle > 0 && a->sub_angle <= 30)) {
+        fprintf(stderr, "%s: --sub-angle expects degrees in (0, 30], got '%s'\n", TOOL, v);
+        return 2;
+      }
+    } else if (!strcmp(o, "--sub-texels")) {
+      ok = sh_cli_double(TOOL, o, v, &a->sub_texels);
+      if (ok && !(a->sub_texels > 0 && a->sub_texels <= 1e6)) {
+        fprintf(stderr, "%s: --sub-texels expects a number in (0, 1e6], got '%s'\n", TOOL, v);
         return 2;
       }
     } else if (!strcmp(o, "--exposure")) {
@@ -160,6 +169,7 @@ static void write_stats(sh_stats *s, const args *a, const gs_options *o,
   sh_stats_str(s, "xi", o->xi == SH_XI_EXACT ? "exact" : "lattice");
   sh_stats_num(s, "jitter", o->jitter);
   sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
+  sh_stats_num(s, "sub_texels", o->sub_texels);
   sh_stats_num(s, "seconds", st->seconds);
   sh_stats_num(s, "setup_seconds", st->setup_seconds);
   sh_stats_num(s, "shadow_seconds", st->shadow_seconds);
@@ -200,6 +210,7 @@ int main(int argc, char **argv) {
   if (a.xi != SH_XI_DEFAULT) opt.xi = a.xi;
   if (a.jitter >= 0) opt.jitter = a.jitter;
   if (a.sub_angle > 0) opt.sub_angle_deg = a.sub_angle;
+  if (a.sub_texels > 0) opt.sub_texels = a.sub_texels;
   double exposure = a.has_exposure ? a.exposure : scene->render.exposure;
   if (!a.quiet)
     for (int i = 0; i < scene->nmaterials; i++) {

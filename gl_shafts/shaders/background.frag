@@ -1,5 +1,5 @@
 // Pixels that see no surface: the background, attenuated by the medium.
-uniform vec3 u_background;
+// u_background: the background radiance (a parameter).
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_depth;
 

@@ -54,29 +54,19 @@
 const float PI = 3.14159265358979;
 const float BIG = 3.0e38;
 
-// Camera: eye, forward, right * tan(half fov x), up * tan(half fov y), and
-// (2 / width, 2 / height).
-uniform vec3 u_eye, u_fwd, u_rx, u_uy;
-uniform vec2 u_ndc_scale;
-
-// Medium (sigma 0 without one): coefficients, box, Henyey-Greenstein g.
-uniform vec3 u_sigma_s, u_sigma_t;
-uniform vec3 u_bmin, u_bmax;
-uniform float u_g;
-
-// Light: position, unit axis or travel direction, intensity or irradiance;
-// spot: (cos outer, cos inner, exponent, 1 / tan outer) and the light-map
-// frame; directional light map: s = dot(u_win_s.xyz, p) + u_win_s.w, t alike.
-uniform vec3 u_lpos, u_ldir, u_lpower;
-uniform vec4 u_spot;
-uniform vec3 u_map_right, u_map_up;
-uniform vec4 u_win_s, u_win_t;
+// The parameters come first, as constants or uniforms (gs_params.c):
+// camera: u_eye, u_fwd, u_rx (right * tan(half fov x)), u_uy (up * tan(half
+//   fov y)), u_ndc_scale (2 / width, 2 / height);
+// medium (0 without one): u_sigma_s, u_sigma_t, the box u_bmin, u_bmax, and
+//   the Henyey-Greenstein u_g;
+// light: u_lpos, u_ldir (unit axis or travel direction), u_lpower
+//   (intensity or irradiance), u_spot (cos outer, cos inner, exponent,
+//   1 / tan outer), the spot light map's frame u_map_right, u_map_up, a
+//   window's coordinates s = dot(u_win_s.xyz, p) + u_win_s.w and u_win_t,
+//   the 2D shadow map's lookup u_shadow_mat (world to [0,1]^2 x reversed
+//   depth) and the cube map's near distance u_shadow_near.
 layout(binding = 0) uniform sampler2D u_map;
 
-// Shadows: the 2D map's lookup matrix (world to [0,1]^2 x reversed depth)
-// and the cube map's near distance.
-uniform mat4 u_shadow_mat;
-uniform float u_shadow_near;
 layout(binding = 1) uniform sampler2DShadow u_shadow2d;
 layout(binding = 2) uniform samplerCubeShadow u_shadowcube;
 

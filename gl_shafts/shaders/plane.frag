@@ -17,13 +17,18 @@
 // plane), which is one sample in most fragments and many where the ray
 // passes near the light. This is the reference's equiangular sampling,
 // stratified by the planes.
+//
+// For a directional light with a window, the part is sampled at equal
+// steps of length, one per u_sub_texels texels of the window's pattern
+// that it crosses.
 flat in vec2 v_slab;
 flat in float v_plane;
 layout(binding = 3) uniform sampler2D u_interval;
 layout(binding = 4) uniform sampler3D u_xi;
-uniform vec4 u_xi_xy; // lattice texture coordinates: ndc.x * x + y, ndc.y * z + w
-uniform vec2 u_xi_z;  // and z * x + y
-uniform float u_inv_sub_angle; // 1 / the largest angle one sample stands for
+// Parameters (gs_sweep.c): u_xi_xy and u_xi_z map to the lattice texture
+// (s = ndc.x * x + y, t = ndc.y * z + w; r = z * x + y); u_inv_sub_angle
+// is 1 / the largest angle one sample stands for, u_inv_sub_texels 1 / the
+// window texels one sample stands for, u_map_size the light map's size.
 layout(location = 0) out vec4 o_color;
 
 vec3 xi_lattice(vec2 ndc, float z) {
@@ -43,11 +48,19 @@ float jitter_offset() {
 #endif
 }
 
-#ifndef SAMPLES
-#define SAMPLES 0
-#endif
-
 #if LIGHT_TYPE == 2
+
+// The integrand but for dt at view depth z: xi * pattern * visibility.
+vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
+  vec3 p = u_eye + z * d;
+#if XI_EXACT
+  vec3 wi = -u_ldir;
+  vec3 v = u_sigma_s * phase(dot(wi, d) / dl) * atten(box_exit(p, wi) + (z - entry) * dl);
+#else
+  vec3 v = xi_lattice(ndc, z);
+#endif
+  return v * light_pattern(p) * shadow_at(p);
+}
 
 void main() {
   vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
@@ -56,16 +69,20 @@ void main() {
   vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
   vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
   float dl = length(d);
-  float z = mix(lo, hi, jitter_offset());
-  vec3 p = u_eye + z * d;
-  vec3 wi = -u_ldir;
-#if XI_EXACT
-  vec3 xi = u_sigma_s * phase(dot(wi, d) / dl) *
-            atten(box_exit(p, wi) + (z - iv.z) * dl);
+  float u = jitter_offset();
+#if HAS_MAP
+  // A window's pattern: one sample per u_sub_texels texels of the light map
+  // that the part of the ray crosses (at least one per plane).
+  vec2 rate = vec2(dot(u_win_s.xyz, d), dot(u_win_t.xyz, d)) * u_map_size;
+  int n = int(clamp(ceil((hi - lo) * length(rate) * u_inv_sub_texels), 1.0, 64.0));
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < n; i++)
+    sum += sample_dir(mix(lo, hi, (float(i) + u) / float(n)), d, dl, ndc, iv.z);
+  sum *= 1.0 / float(n);
 #else
-  vec3 xi = xi_lattice(ndc, z);
+  vec3 sum = sample_dir(mix(lo, hi, u), d, dl, ndc, iv.z);
 #endif
-  o_color = vec4(u_lpower * xi * light_pattern(p) * shadow_at(p) * ((hi - lo) * dl), 0.0);
+  o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
 }
 
 #else
@@ -158,12 +175,7 @@ void main() {
   // no trigonometric function but the atan above. llvmpipe runs every
   // branch and every loop to its longest lane, so the code has none but
   // this loop.
-#if SAMPLES > 0
-  // A fixed number of samples, unrolled.
-  const int n = SAMPLES;
-#else
   int n = int(clamp(ceil(dtheta * u_inv_sub_angle), 1.0, 64.0));
-#endif
   float step = dtheta / float(n);
   float x = 0.5 * step, x2 = x * x;
   float tau = x * (1.0 + x2 * (1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (17.0 / 315.0))));

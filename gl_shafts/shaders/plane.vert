@@ -2,7 +2,7 @@
 // depth so that the depth test drops the parts behind surfaces.
 layout(location = 0) in vec4 a_slab; // ndc x, ndc y, slab front z, back z
 layout(location = 1) in float a_plane; // the plane's index
-uniform float u_near;
+// u_near: the camera's near distance (a parameter, gs_sweep.c).
 flat out vec2 v_slab;
 flat out float v_plane;
 

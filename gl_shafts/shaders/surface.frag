@@ -5,14 +5,13 @@ in vec3 v_pos;
 in vec3 v_nrm;
 uniform vec3 u_kd, u_ks, u_base;
 uniform float u_shininess;
-uniform int u_lit;
+// u_lit (a parameter): 1.0 if the pass has a light.
 #if SPHERE
 // The sphere drawn: world to object space, and its object-space centre and
 // radius.
 uniform mat4 u_obj_inv;
 uniform vec3 u_center;
 uniform float u_radius;
-uniform float u_near;
 #endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_depth;
@@ -42,7 +41,7 @@ void main() {
 #endif
   if (dot(n, view) > 0.0) n = -n; // shade the side the camera sees
   vec3 L = u_base;
-  if (u_lit != 0) {
+  if (u_lit != 0.0) {
     vec3 wi;
     vec3 e = light_incident(p, wi);
     float cosl = dot(n, wi);

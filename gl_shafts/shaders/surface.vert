@@ -2,7 +2,7 @@
 // bit-identical depths, which the later passes test with GL_EQUAL.
 layout(location = 0) in vec3 a_pos;
 layout(location = 1) in vec3 a_nrm;
-uniform mat4 u_viewproj;
+// u_viewproj: world to clip space (a parameter, gs_surface.c).
 #if SPHERE
 // An exact sphere's inscribed mesh, inflated to cover the sphere.
 uniform vec3 u_inflate_center;
