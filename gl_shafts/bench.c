@@ -168,7 +168,9 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
     }
     printf("| %s | %dx%d | %d | %dx%d | %s%s | %.1f (%.1f) | %.1f | %.1f | %.1f / %.1f / %.1f / %.1f / %.1f "
            "| %.2f | %s | %s |\n",
-           base, img.width, img.height, o.planes, o.lattice_u, o.lattice_v,
+           base, img.width, img.height,
+           scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes,
+           o.lattice_u, o.lattice_v,
            o.xi == SH_XI_EXACT ? "exact" : "lattice", o.jitter ? " +jitter" : "",
            1000 * best, 1000 * med, 1000 * cpu, 1000 * (setup + first), 1000 * m->shadow_seconds,
            1000 * m->surface_seconds, 1000 * m->lattice_seconds,

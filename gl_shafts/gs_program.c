@@ -59,12 +59,24 @@ static sh_status build(const gs__glsl *vs, const gs__glsl *fs,
 sh_status gs__program_get(gs__programs *c, const gs__glsl *vs,
                           const gs__glsl *fs, const char *defines,
                           GLuint *out, sh_error *err) {
+  c->clock++;
   for (int i = 0; i < c->n; i++)
     if (c->entry[i].vs == vs && c->entry[i].fs == fs &&
         !strcmp(c->entry[i].defines, defines)) {
+      c->entry[i].last_use = c->clock;
       *out = c->entry[i].id;
       return SH_OK;
     }
+  if (c->n == GS__PROGRAMS_MAX) {
+    /* Full: drop the least recently used (baked programs pile up when the
+     * camera moves). */
+    int lru = 0;
+    for (int i = 1; i < c->n; i++)
+      if (c->entry[i].last_use < c->entry[lru].last_use) lru = i;
+    glDeleteProgram(c->entry[lru].id);
+    free(c->entry[lru].defines);
+    c->entry[lru] = c->entry[--c->n];
+  }
   if (c->n == c->cap) {
     int cap = c->cap ? 2 * c->cap : 16;
     gs__program_entry *e = realloc(c->entry, (size_t)cap * sizeof *e);
@@ -86,6 +98,7 @@ sh_status gs__program_get(gs__programs *c, const gs__glsl *vs,
   c->entry[c->n].fs = fs;
   c->entry[c->n].defines = copy;
   c->entry[c->n].id = id;
+  c->entry[c->n].last_use = c->clock;
   c->n++;
   *out = id;
   return SH_OK;

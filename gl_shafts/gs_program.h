@@ -12,12 +12,16 @@ typedef struct gs__program_entry {
   const gs__glsl *vs, *fs;
   char *defines;
   GLuint id;
+  unsigned long last_use;
 } gs__program_entry;
 
-/* The programs built so far; zero-initialise before use. */
+/* The programs built so far, at most GS__PROGRAMS_MAX (the least recently
+ * used goes first); zero-initialise before use. */
+#define GS__PROGRAMS_MAX 128
 typedef struct gs__programs {
   int n, cap;
   gs__program_entry *entry;
+  unsigned long clock;
 } gs__programs;
 
 /* The program of vertex shader vs and fragment shader fs, each compiled as

@@ -39,11 +39,11 @@ gs_options gs_options_defaults(const sh_scene *scene) {
   gs_options o;
   memset(&o, 0, sizeof o);
   const sh_render_settings *r = &scene->render;
-  o.planes = r->planes > 0 ? r->planes : GS_DEFAULT_PLANES;
+  o.planes = r->planes > 0 ? r->planes : 0;
   o.lattice_u = r->lattice_u > 0 ? r->lattice_u : GS_DEFAULT_LATTICE;
   o.lattice_v = r->lattice_v > 0 ? r->lattice_v : GS_DEFAULT_LATTICE;
   o.light_map_res = r->light_map_res > 0 ? r->light_map_res : 0;
-  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : GS_DEFAULT_SHADOW_MAP_RES;
+  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : 0;
   o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
   o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
   o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
@@ -51,8 +51,20 @@ gs_options gs_options_defaults(const sh_scene *scene) {
   return o;
 }
 
+int gs_light_planes(const gs_options *o, sh_light_type type) {
+  if (o->planes > 0) return o->planes;
+  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_PLANES_DIRECTIONAL
+                                      : GS_DEFAULT_PLANES_LOCAL;
+}
+
+int gs_light_shadow_map_res(const gs_options *o, sh_light_type type) {
+  if (o->shadow_map_res > 0) return o->shadow_map_res;
+  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_SHADOW_DIRECTIONAL
+                                      : GS_DEFAULT_SHADOW_LOCAL;
+}
+
 sh_status gs_options_check(const gs_options *o, sh_error *err) {
-  if (o->planes < 1 || o->planes > 100000)
+  if (o->planes < 0 || o->planes > 100000)
     return sh_error_set(err, SH_ERR_ARG, "planes must be in [1, 100000], not %d",
                         o->planes);
   if (o->lattice_u < 2 || o->lattice_u > 4096 || o->lattice_v < 2 ||
@@ -64,7 +76,7 @@ sh_status gs_options_check(const gs_options *o, sh_error *err) {
     return sh_error_set(err, SH_ERR_ARG,
                         "light_map_res must be in [1, 16384] (or 0: native), not %d",
                         o->light_map_res);
-  if (o->shadow_map_res < 1 || o->shadow_map_res > 16384)
+  if (o->shadow_map_res < 0 || o->shadow_map_res > 16384)
     return sh_error_set(err, SH_ERR_ARG, "shadow_map_res must be in [1, 16384], not %d",
                         o->shadow_map_res);
   if (o->xi != SH_XI_LATTICE && o->xi != SH_XI_EXACT)
@@ -95,21 +107,27 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
                         "the image (%dx%d) is larger than this GL renders (%dx%d)",
                         c->width, c->height, maxview[0] < max2d ? maxview[0] : max2d,
                         maxview[1] < max2d ? maxview[1] : max2d);
-  if (o->shadow_map_res > max2d || o->shadow_map_res > maxcube)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "shadow_map_res %d is larger than this GL allows (%d)",
-                        o->shadow_map_res, max2d < maxcube ? max2d : maxcube);
+  for (int t = 0; t < 3; t++) {
+    int res = gs_light_shadow_map_res(o, (sh_light_type)t);
+    if (res > max2d || res > maxcube)
+      return sh_error_set(err, SH_ERR_ARG,
+                          "shadow_map_res %d is larger than this GL allows (%d)", res,
+                          max2d < maxcube ? max2d : maxcube);
+  }
   if (o->light_map_res > max2d)
     return sh_error_set(err, SH_ERR_ARG,
                         "light_map_res %d is larger than this GL allows (%d)",
                         o->light_map_res, max2d);
+  int maxplanes = gs_light_planes(o, SH_LIGHT_DIRECTIONAL);
+  if (gs_light_planes(o, SH_LIGHT_SPOT) > maxplanes)
+    maxplanes = gs_light_planes(o, SH_LIGHT_SPOT);
   if (o->xi == SH_XI_LATTICE &&
-      (o->lattice_u > max3d || o->lattice_v > max3d || o->planes + 1 > max3d))
+      (o->lattice_u > max3d || o->lattice_v > max3d || maxplanes + 1 > max3d))
     return sh_error_set(err, SH_ERR_ARG,
                         "with xi on the lattice, the lattice (%dx%d) and planes "
                         "+ 1 (%d) must be at most %d, this GL's largest 3D "
                         "texture; use fewer planes or xi exact",
-                        o->lattice_u, o->lattice_v, o->planes + 1, max3d);
+                        o->lattice_u, o->lattice_v, maxplanes + 1, max3d);
   for (int i = 0; i < r->scene->nlights; i++) {
     const sh_light *l = &r->scene->lights[i];
     if (l->has_map && o->light_map_res == 0 &&
@@ -232,7 +250,8 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
     if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
       st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i],
-                             o->shadow_map_res, &r->geom, err);
+                             gs_light_shadow_map_res(o, scene->lights[i].type),
+                             &r->geom, err);
       s.shadow_maps++;
     }
   }
@@ -250,16 +269,16 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
     s.lights_swept++;
     double map[6] = {0, 0, 0, 0, 0, 0};
     const sh_light *l = &scene->lights[i];
-    int lmres = o->light_map_res;
+    int lmres = o->light_map_res, planes = gs_light_planes(o, l->type);
     gs__sweep_job job = {&fr, ls, &r->shadows[i], r->maps[i],
-                         NULL, map, o->planes, o->jitter,
+                         NULL, map, planes, o->jitter,
                          o->sub_angle_deg * SH_PI / 180.0,
                          o->sub_texels,
                          lmres ? lmres : l->map.width, lmres ? lmres : l->map.height};
     if (o->xi == SH_XI_LATTICE) {
       st = gs__lattice_eval(&r->lattices[i], scene, &r->view, ls, o->lattice_u,
-                            o->lattice_v, o->planes, map, err);
-      s.lattice_points += (long)o->lattice_u * o->lattice_v * (o->planes + 1);
+                            o->lattice_v, planes, map, err);
+      s.lattice_points += (long)o->lattice_u * o->lattice_v * (planes + 1);
       job.lattice = &r->lattices[i];
       s.lattice_seconds += lap(&t);
     }

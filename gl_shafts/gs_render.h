@@ -36,11 +36,13 @@ extern "C" {
 /* Rendering settings. gs_options_defaults fills them from the scene's
  * render object, with the built-in defaults below for keys it lacks. */
 typedef struct gs_options {
-  int planes;               /* virtual planes per light, 1..100000 */
+  int planes;               /* virtual planes per light, 1..100000; 0: by
+                               the light's kind (GS_DEFAULT_PLANES_*) */
   int lattice_u, lattice_v; /* lattice points per plane, each 2..4096 */
   int light_map_res;        /* 0: light maps at their own size; else
                                resampled to R x R, 1..16384 */
-  int shadow_map_res;       /* shadow-map size in texels, 1..16384 */
+  int shadow_map_res;       /* shadow-map size in texels, 1..16384; 0: by
+                               the light's kind (GS_DEFAULT_SHADOW_*) */
   sh_xi_mode xi;            /* SH_XI_LATTICE (the seed's) or SH_XI_EXACT */
   int jitter;               /* 1: per-pixel jitter of the sample depths */
   double sub_angle_deg;     /* point and spot lights: a plane's fragment
@@ -54,10 +56,15 @@ typedef struct gs_options {
                                the ray crosses (at most 64 samples) */
 } gs_options;
 
-/* The built-in defaults, chosen by measurement (docs/gl_shafts.md). */
-#define GS_DEFAULT_PLANES 100
+/* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
+ * and spot lights need few planes, their angular sub-samples doing the
+ * rest; directional lights are sampled by the planes. Orthographic shadow
+ * maps cover more than a spot's cone, so they get more texels. */
+#define GS_DEFAULT_PLANES_LOCAL 8
+#define GS_DEFAULT_PLANES_DIRECTIONAL 24
 #define GS_DEFAULT_LATTICE 20
-#define GS_DEFAULT_SHADOW_MAP_RES 1024
+#define GS_DEFAULT_SHADOW_LOCAL 1024
+#define GS_DEFAULT_SHADOW_DIRECTIONAL 2048
 #define GS_DEFAULT_XI SH_XI_EXACT
 #define GS_DEFAULT_JITTER 0
 #define GS_DEFAULT_SUB_ANGLE_DEG 4.0
@@ -65,6 +72,11 @@ typedef struct gs_options {
 
 /* The defaults, overridden by the scene's render keys that are given. */
 gs_options gs_options_defaults(const sh_scene *scene);
+
+/* The planes and shadow-map size a light of this kind gets with these
+ * options (resolving 0, "by the light's kind"). */
+int gs_light_planes(const gs_options *opt, sh_light_type type);
+int gs_light_shadow_map_res(const gs_options *opt, sh_light_type type);
 
 /* SH_ERR_ARG with a message naming the option if a value is out of range. */
 sh_status gs_options_check(const gs_options *opt, sh_error *err);

@@ -24,12 +24,14 @@ static void usage(FILE *f) {
 "  -o, --output FILE      output image: .exr (linear 32-bit float radiance) or\n"
 "                         .png (sRGB of radiance * 2^exposure, clamped);\n"
 "                         repeat to write several formats from one render\n"
-"  --planes N             virtual planes per light (default: render.planes, else %d)\n"
+"  --planes N             virtual planes per light (default: render.planes, else\n"
+"                         %d for point and spot lights, %d for directional ones)\n"
 "  --lattice NU NV        lattice points per plane for xi (default: render.lattice,\n"
 "                         else %d %d)\n"
 "  --light-map-res R      resample light maps to R x R (default: render.light_map_res,\n"
 "                         else each map's own size)\n"
-"  --shadow-map-res S     shadow-map size (default: render.shadow_map_res, else %d)\n"
+"  --shadow-map-res S     shadow-map size (default: render.shadow_map_res, else\n"
+"                         %d for point and spot lights, %d for directional ones)\n"
 "  --xi lattice|exact     xi on the lattice, interpolated (the paper's method), or\n"
 "                         per fragment (default: render.xi, else %s)\n"
 "  --jitter, --no-jitter  per-pixel jitter of the sample depths (default:\n"
@@ -44,8 +46,9 @@ static void usage(FILE *f) {
 "  -h, --help             show this help\n"
 "\n"
 "Exit status: 0 on success, 2 for bad input (arguments, scene), 1 otherwise.\n",
-          GS_DEFAULT_PLANES, GS_DEFAULT_LATTICE, GS_DEFAULT_LATTICE,
-          GS_DEFAULT_SHADOW_MAP_RES, GS_DEFAULT_XI == SH_XI_EXACT ? "exact" : "lattice",
+          GS_DEFAULT_PLANES_LOCAL, GS_DEFAULT_PLANES_DIRECTIONAL,
+          GS_DEFAULT_LATTICE, GS_DEFAULT_LATTICE, GS_DEFAULT_SHADOW_LOCAL,
+          GS_DEFAULT_SHADOW_DIRECTIONAL, GS_DEFAULT_XI == SH_XI_EXACT ? "exact" : "lattice",
           GS_DEFAULT_JITTER ? "on" : "off", GS_DEFAULT_SUB_ANGLE_DEG,
           GS_DEFAULT_SUB_TEXELS);
 }
@@ -161,11 +164,13 @@ static void write_stats(sh_stats *s, const args *a, const gs_options *o,
   sh_stats_str(s, "renderer", st->renderer);
   sh_stats_num(s, "width", st->width);
   sh_stats_num(s, "height", st->height);
-  sh_stats_num(s, "planes_per_light", o->planes);
+  if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
+  else sh_stats_str(s, "planes_per_light", "by light kind");
   sh_stats_num(s, "lattice_u", o->lattice_u);
   sh_stats_num(s, "lattice_v", o->lattice_v);
   sh_stats_num(s, "light_map_res", o->light_map_res);
-  sh_stats_num(s, "shadow_map_res", o->shadow_map_res);
+  if (o->shadow_map_res) sh_stats_num(s, "shadow_map_res", o->shadow_map_res);
+  else sh_stats_str(s, "shadow_map_res", "by light kind");
   sh_stats_str(s, "xi", o->xi == SH_XI_EXACT ? "exact" : "lattice");
   sh_stats_num(s, "jitter", o->jitter);
   sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
