@@ -26,8 +26,10 @@ sh_vec3 gs__xi_r2(const sh_scene *scene, const sh_light *l, sh_vec3 eye,
 sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
                            const gs__view *view, const gs__light_setup *ls,
                            int nu, int nv, int planes, double map[6],
-                           sh_error *err) {
-  int nw = planes + 1;
+                           long *points, sh_error *err) {
+  /* The seed's lattice lies on the planes; with few planes (and samples
+   * between them) it gets layers between them too. */
+  int nw = (planes > nu ? (planes > nv ? planes : nv) : (nu > nv ? nu : nv)) + 1;
   size_t n = (size_t)nu * nv * nw * 4;
   if (n > lat->cap) {
     float *d = realloc(lat->data, n * sizeof *d);
@@ -39,7 +41,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
   double x0 = ls->rect[0], y0 = ls->rect[1], x1 = ls->rect[2], y1 = ls->rect[3];
   if (!(x1 > x0)) x1 = x0 + 1e-6;
   if (!(y1 > y0)) y1 = y0 + 1e-6;
-  double dz = (ls->zmax - ls->zmin) / planes;
+  double dz = (ls->zmax - ls->zmin) / (nw - 1);
   float *o = lat->data;
   for (int k = 0; k < nw; k++) {
     double z = ls->zmin + k * dz;
@@ -80,6 +82,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
   map[3] = 0.5 / nv - y0 * map[2];
   map[4] = 1.0 / (dz * nw);
   map[5] = 0.5 / nw - ls->zmin * map[4];
+  *points = (long)nu * nv * nw;
   return gs__gl_check("uploading the lattice", err);
 }
 

@@ -7,10 +7,11 @@
  * exactly over each plane's slab (plane.frag), which interpolation across
  * the lattice could not do near the light.
  * The lattice spans the light's screen rectangle; its layers sit at the
- * planes' slab boundaries (planes + 1 layers), so that the texture's
- * trilinear filtering interpolates xi across each plane, as the seed's
- * Gouraud shading does, and between planes, for the sample depths the
- * sweep takes inside each slab. */
+ * planes' slab boundaries (planes + 1 layers), or, with fewer planes than
+ * lattice points a side, max(nu, nv) + 1 layers evenly over the same depths,
+ * so that the texture's trilinear filtering interpolates xi across each
+ * plane, as the seed's Gouraud shading does, and between planes, for the
+ * sample depths the sweep takes inside each slab. */
 #ifndef GS_LATTICE_H
 #define GS_LATTICE_H
 
@@ -31,15 +32,16 @@ typedef struct gs__lattice {
 sh_vec3 gs__xi_r2(const sh_scene *scene, const sh_light *light, sh_vec3 eye,
                   sh_vec3 p);
 
-/* Evaluates xi on the light's lattice (nu x nv points over ls->rect, at the
- * planes + 1 depths zmin + k (zmax - zmin) / planes) and uploads it.
+/* Evaluates xi on the light's lattice (nu x nv points over ls->rect, at
+ * max(planes, nu, nv) + 1 depths evenly from zmin to zmax) and uploads it.
+ * Returns the number of points in *points.
  * Writes the texture-coordinate map the plane shader needs:
  * s = ndc.x * map[0] + map[1], t = ndc.y * map[2] + map[3],
  * r = z * map[4] + map[5]. */
 sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
                            const gs__view *view, const gs__light_setup *ls,
                            int nu, int nv, int planes, double map[6],
-                           sh_error *err);
+                           long *points, sh_error *err);
 
 /* Binds the lattice texture to texture unit 4. */
 void gs__lattice_bind(const gs__lattice *lat);

@@ -51,6 +51,12 @@ int gs__poly_clip(gs__poly *p, gs__halfspace h) {
       scale = fmax(scale, sh_max3(sh_vmax(p->face[f].v[i],
                                           sh_neg(p->face[f].v[i]))));
   double eps = 1e-12 * (scale + fabs(h.c) / len) * len;
+  /* Nothing beyond the plane (it may hold a face): unchanged. */
+  int beyond = 0;
+  for (int f = 0; f < p->nfaces && !beyond; f++)
+    for (int i = 0; i < p->face[f].n && !beyond; i++)
+      beyond = sh_dot(h.n, p->face[f].v[i]) - h.c > eps;
+  if (!beyond) return p->nfaces;
 
   gs__poly *out = malloc(sizeof *out);
   if (!out) return p->nfaces;

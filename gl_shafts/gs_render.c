@@ -276,9 +276,10 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
                          o->sub_texels,
                          lmres ? lmres : l->map.width, lmres ? lmres : l->map.height};
     if (o->xi == SH_XI_LATTICE) {
+      long points = 0;
       st = gs__lattice_eval(&r->lattices[i], scene, &r->view, ls, o->lattice_u,
-                            o->lattice_v, planes, map, err);
-      s.lattice_points += (long)o->lattice_u * o->lattice_v * (planes + 1);
+                            o->lattice_v, planes, map, &points, err);
+      s.lattice_points += points;
       job.lattice = &r->lattices[i];
       s.lattice_seconds += lap(&t);
     }

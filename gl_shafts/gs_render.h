@@ -60,8 +60,8 @@ typedef struct gs_options {
  * and spot lights need few planes, their angular sub-samples doing the
  * rest; directional lights are sampled by the planes. Orthographic shadow
  * maps cover more than a spot's cone, so they get more texels. */
-#define GS_DEFAULT_PLANES_LOCAL 8
-#define GS_DEFAULT_PLANES_DIRECTIONAL 24
+#define GS_DEFAULT_PLANES_LOCAL 4
+#define GS_DEFAULT_PLANES_DIRECTIONAL 8
 #define GS_DEFAULT_LATTICE 20
 #define GS_DEFAULT_SHADOW_LOCAL 1024
 #define GS_DEFAULT_SHADOW_DIRECTIONAL 2048

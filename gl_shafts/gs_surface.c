@@ -72,7 +72,14 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
         }
         const sh_material *m = &scene->materials[s->material];
         if (sphere) {
+          /* Both sides of the covering mesh would give the same sphere
+           * point (added twice in the blended passes): draw the side that
+           * faces the camera, the inside if the camera is in the sphere. */
           const sh_shape *sh = &scene->shapes[i];
+          sh_vec3 eye = sh_xform_point(&sh->inv, fr->view->frame.origin);
+          int inside = sh_length(sh_sub(eye, sh->center)) < sh->radius;
+          glEnable(GL_CULL_FACE);
+          glCullFace(inside != s->mirrored ? GL_FRONT : GL_BACK);
           gs__uniform_mat4(prog, "u_obj_inv", &sh->inv);
           gs__uniform_v3(prog, "u_center", sh->center);
           gs__uniform_f(prog, "u_radius", sh->radius);
@@ -86,6 +93,7 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
                        pass == 0 ? sh_add(m->emission, sh_mul(scene->ambient, m->diffuse))
                                  : sh_v3s(0));
         glDrawArrays(GL_TRIANGLES, s->first, s->count);
+        glDisable(GL_CULL_FACE);
       }
     }
     sh_status st = gs__gl_check("shading the surfaces", err);

@@ -5,6 +5,20 @@
 #include <string.h>
 
 #include "gs_params.h"
+#include "sh_medium.h"
+
+/* The phase function's forward peak: the angle (radians) at which it has
+ * fallen halfway from its peak to its least value. */
+static double phase_half_angle(const sh_phase *ph) {
+  double top = sh_phase_eval(ph, 1.0), bottom = top;
+  for (int i = 1; i <= 180; i++)
+    bottom = fmin(bottom, sh_phase_eval(ph, cos(i * SH_PI / 180.0)));
+  for (int i = 1; i <= 1800; i++) {
+    double a = i * SH_PI / 1800.0;
+    if (sh_phase_eval(ph, cos(a)) <= 0.5 * (top + bottom)) return a;
+  }
+  return SH_PI;
+}
 
 sh_status gs__sweep_init(gs__sweep *sw, sh_error *err) {
   memset(sw, 0, sizeof *sw);
@@ -132,19 +146,32 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   sh_status st = interval_pass(job, t, err);
   if (st != SH_OK) return st;
 
-  char extra[128];
-  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n",
-           job->lattice == NULL, job->jitter);
+  /* Optically thick slabs (optical depth change above GS__SUB_TAU along a
+   * ray's part, whose length is at most the slab's depth times the longest
+   * |d|) are sampled by optical depth too. */
+  const sh_medium *med = &job->frame->scene->medium;
+  double smax = sh_max3(med->sigma_t);
+  const sh_camera_frame *cf = &job->frame->view->frame;
+  double dlmax = sqrt(1.0 + cf->tan_half_x * cf->tan_half_x + cf->tan_half_y * cf->tan_half_y);
+  double slab = (ls->zmax - ls->zmin) / job->planes * dlmax;
+  int tau_sub = 2.0 * smax * slab > GS__SUB_TAU;
+  char extra[160];
+  snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define TAU_SUB %d\n",
+           job->lattice == NULL, job->jitter, tau_sub);
   gs__params *p = gs__params_begin(job->frame, ls, extra);
   gs__param_f(p, "u_near", job->frame->view->znear);
-  /* A spot's smooth edge is sampled at least once per its width. */
+  /* A spot's smooth edge is sampled at least once per its width, a
+   * forward-peaked phase function (Nishita's murky) four times per the
+   * peak's half width. */
   double sub = job->sub_angle;
   const sh_light *l = ls->light;
   if (l->type == SH_LIGHT_SPOT && l->inner_deg < l->outer_deg)
     sub = fmin(sub, (l->outer_deg - l->inner_deg) * SH_PI / 180.0);
+  sub = fmin(sub, 0.25 * phase_half_angle(&med->phase));
   gs__param_f(p, "u_inv_sub_angle", 1.0 / sub);
   gs__param_f(p, "u_inv_sub_texels", 1.0 / job->sub_texels);
   gs__param_2f(p, "u_map_size", job->map_width, job->map_height);
+  gs__param_f(p, "u_tau_rate", 2.0 * smax / GS__SUB_TAU);
   const double *m = job->lattice_map;
   gs__param_4f(p, "u_xi_xy", m[0], m[1], m[2], m[3]);
   gs__param_2f(p, "u_xi_z", m[4], m[5]);

@@ -18,6 +18,10 @@
 #include "gs_view.h"
 #include "sh_scene.h"
 
+/* The largest optical-depth change one sample may stand for in a dense
+ * medium (midpoint-rule error about its square / 24). */
+#define GS__SUB_TAU 0.5
+
 typedef struct gs__sweep {
   GLuint vao, vbo, query;
   float *verts;        /* 5 floats a vertex: ndc x, y, z front, z back, plane */

@@ -39,7 +39,7 @@ static const test_case CASES[] = {
    "  \"bounds\": {\"min\": [-3, 0, -3], \"max\": [3, 4, 3]}},"
    " \"lights\": [{\"type\": \"point\", \"position\": [0.5, 2.5, 0.5],"
    "  \"intensity\": [6, 5, 4]}]}",
-   0.02},
+   0.005},
   {"spot_shadow_camera_inside",
    HEAD
    " \"camera\": {\"position\": [2.2, 1.6, 2.4], \"look_at\": [0, 0.8, 0],"
@@ -52,7 +52,7 @@ static const test_case CASES[] = {
    "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 22, \"exponent\": 1}],"
    FLOOR_AND_BALL
    " \"ambient\": [0.02, 0.02, 0.02]}",
-   0.03},
+   0.025},
   {"point_cube_shadow_murky",
    HEAD
    " \"camera\": {\"position\": [0, 3, 7], \"look_at\": [0, 0.8, 0],"
@@ -64,7 +64,7 @@ static const test_case CASES[] = {
    "  \"intensity\": [8, 8, 8]}],"
    FLOOR_AND_BALL
    " \"background\": [0.01, 0.01, 0.02]}",
-   0.03},
+   0.005},
   {"spot_gobo_hazy",
    HEAD
    " \"camera\": {\"position\": [0, 2.5, 6], \"look_at\": [0, 1, 0],"
@@ -78,7 +78,7 @@ static const test_case CASES[] = {
    "  \"light_map\": {\"image\": \"assets/gobo_dots.png\", \"up\": [0, 0, -1]}}],"
    " \"shapes\": [{\"type\": \"quad\", \"material\": \"floor\","
    "   \"corner\": [-4, 0, 4], \"u\": [8, 0, 0], \"v\": [0, 0, -8]}]}",
-   0.03},
+   0.02},
   {"directional_window_rayleigh",
    HEAD
    " \"camera\": {\"position\": [3, 2, 3], \"look_at\": [-0.5, 0.8, 0],"
@@ -92,7 +92,7 @@ static const test_case CASES[] = {
    "   \"origin\": [-3, 2.6, -1], \"u\": [0, 0, 2], \"v\": [0, -1.4, 0]}}],"
    FLOOR_AND_BALL
    " \"ambient\": [0.03, 0.03, 0.03]}",
-   0.05},
+   0.02},
   {"directional_shadow_isotropic",
    HEAD
    " \"camera\": {\"position\": [0, 1.5, 6], \"look_at\": [0, 1.2, 0],"
@@ -107,7 +107,7 @@ static const test_case CASES[] = {
    "   \"max\": [0.6, 2.2, 0.6]},"
    "  {\"type\": \"cylinder\", \"material\": \"lamp\", \"base\": [1.5, 0, 1],"
    "   \"top\": [1.5, 1.5, 1], \"radius\": 0.2}]}",
-   0.03},
+   0.015},
 };
 
 int main(void) {

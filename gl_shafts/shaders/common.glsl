@@ -13,6 +13,7 @@
 //   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one
 //   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent
 //   LIGHT_INSIDE 1 if a point or spot light is inside the medium's box
+//   TAU_SUB     1 if a slab can be optically thick: sample it by optical depth
 // Conventions: p is a world point; z is view depth, the distance along the
 // camera's forward axis, so the pixel ray is u_eye + z * d with d the
 // unnormalised direction of view_ray (d . forward = 1).
@@ -40,6 +41,9 @@
 #endif
 #ifndef GREY_SIGMA
 #define GREY_SIGMA 0
+#endif
+#ifndef TAU_SUB
+#define TAU_SUB 0
 #endif
 #ifndef LIGHT_INSIDE
 #define LIGHT_INSIDE 0

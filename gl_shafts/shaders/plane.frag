@@ -20,7 +20,9 @@
 //
 // For a directional light with a window, the part is sampled at equal
 // steps of length, one per u_sub_texels texels of the window's pattern
-// that it crosses.
+// that it crosses. In a dense medium (TAU_SUB), the transmittance changes
+// within a slab too, and every light's part gets a sample per optical depth
+// u_sub_tau / 2 (u_tau_rate = 2 sigma_t / u_sub_tau).
 flat in vec2 v_slab;
 flat in float v_plane;
 layout(binding = 3) uniform sampler2D u_interval;
@@ -28,7 +30,8 @@ layout(binding = 4) uniform sampler3D u_xi;
 // Parameters (gs_sweep.c): u_xi_xy and u_xi_z map to the lattice texture
 // (s = ndc.x * x + y, t = ndc.y * z + w; r = z * x + y); u_inv_sub_angle
 // is 1 / the largest angle one sample stands for, u_inv_sub_texels 1 / the
-// window texels one sample stands for, u_map_size the light map's size.
+// window texels one sample stands for, u_map_size the light map's size,
+// u_tau_rate the samples per unit length a dense medium needs.
 layout(location = 0) out vec4 o_color;
 
 vec3 xi_lattice(vec2 ndc, float z) {
@@ -48,9 +51,13 @@ float jitter_offset() {
 #endif
 }
 
+// Bisection steps that locate a shadow's edge within a sample's step.
+#define EDGE_STEPS 5
+
 #if LIGHT_TYPE == 2
 
-// The integrand but for dt at view depth z: xi * pattern * visibility.
+// The integrand but for dt at view depth z, without the visibility:
+// xi * pattern.
 vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
   vec3 p = u_eye + z * d;
 #if XI_EXACT
@@ -59,7 +66,29 @@ vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
 #else
   vec3 v = xi_lattice(ndc, z);
 #endif
-  return v * light_pattern(p) * shadow_at(p);
+  return v * light_pattern(p);
+}
+
+// A directional light's visibility at view depth z, and over [a, b] with
+// its edge found by bisection where the ends differ (as for point lights).
+float vis_dir(float z, vec3 d) { return shadow_at(u_eye + z * d); }
+
+float vis_part(float a, float b, float mid, vec3 d) {
+#if SHADOW
+  float v0 = vis_dir(a, d), v1 = vis_dir(b, d);
+  float v = 0.5 * (v0 + v1);
+  if (abs(v1 - v0) > 0.5) {
+    float l = a, r = b;
+    for (int j = 0; j < EDGE_STEPS; j++) {
+      float m = 0.5 * (l + r);
+      if ((vis_dir(m, d) > 0.5) == (v0 > 0.5)) l = m; else r = m;
+    }
+    v = mix(v1, v0, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
+  }
+  return v;
+#else
+  return vis_dir(mid, d);
+#endif
 }
 
 void main() {
@@ -70,17 +99,29 @@ void main() {
   vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
   float dl = length(d);
   float u = jitter_offset();
-#if HAS_MAP
+#if HAS_MAP || TAU_SUB
   // A window's pattern: one sample per u_sub_texels texels of the light map
-  // that the part of the ray crosses (at least one per plane).
+  // that the part of the ray crosses (at least one per plane); in a dense
+  // medium, one per optical depth u_sub_tau / 2.
+  float k = 0.0;
+#if HAS_MAP
   vec2 rate = vec2(dot(u_win_s.xyz, d), dot(u_win_t.xyz, d)) * u_map_size;
-  int n = int(clamp(ceil((hi - lo) * length(rate) * u_inv_sub_texels), 1.0, 64.0));
+  k = length(rate) * u_inv_sub_texels;
+#endif
+#if TAU_SUB
+  k = max(k, dl * u_tau_rate);
+#endif
+  int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < n; i++)
-    sum += sample_dir(mix(lo, hi, (float(i) + u) / float(n)), d, dl, ndc, iv.z);
+  float w = (hi - lo) / float(n);
+  for (int i = 0; i < n; i++) {
+    float a = lo + float(i) * w, z = a + u * w;
+    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_part(a, a + w, z, d);
+  }
   sum *= 1.0 / float(n);
 #else
-  vec3 sum = sample_dir(mix(lo, hi, u), d, dl, ndc, iv.z);
+  float z = mix(lo, hi, u);
+  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_part(lo, hi, z, d);
 #endif
   o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
 }
@@ -101,7 +142,8 @@ float g_er, g_dr, g_eu, g_du; // e and dn . the map's right and up
 vec4 g_qf, g_qd; // the shadow lookup of the foot, and of dn
 #endif
 
-// The integrand but for dt / r^2 at the angle (c, s) = (cos, sin) theta.
+// The integrand but for dt / r^2 and the visibility at the angle
+// (c, s) = (cos, sin) theta.
 vec3 sample_at(float c, float s) {
   float k = g_h * s / c;          // ray length from the foot
   vec3 wi = c * g_e - s * g_dn;   // towards the light
@@ -125,14 +167,21 @@ vec3 sample_at(float c, float s) {
            : vec3(0.0);
 #endif
 #endif
-#if SHADOW == 1
-  vec4 q = g_qf + k * g_qd;
-  v *= texture(u_shadow2d, q.xyz / q.w);
-#elif SHADOW == 2
-  vec3 a = abs(wi);
-  v *= texture(u_shadowcube, vec4(-wi, u_shadow_near * c / (g_h * max(a.x, max(a.y, a.z)))));
-#endif
   return v;
+}
+
+// The light's visibility at the angle (c, s).
+float vis_at(float c, float s) {
+#if SHADOW == 1
+  vec4 q = g_qf + (g_h * s / c) * g_qd;
+  return texture(u_shadow2d, q.xyz / q.w);
+#elif SHADOW == 2
+  vec3 wi = c * g_e - s * g_dn;
+  vec3 a = abs(wi);
+  return texture(u_shadowcube, vec4(-wi, u_shadow_near * c / (g_h * max(a.x, max(a.y, a.z)))));
+#else
+  return 1.0;
+#endif
 }
 
 void main() {
@@ -175,7 +224,15 @@ void main() {
   // no trigonometric function but the atan above. llvmpipe runs every
   // branch and every loop to its longest lane, so the code has none but
   // this loop.
-  int n = int(clamp(ceil(dtheta * u_inv_sub_angle), 1.0, 64.0));
+  float k = dtheta * u_inv_sub_angle;
+#if TAU_SUB
+  // In a dense medium also one sample per optical depth u_sub_tau / 2 (the
+  // transmittances towards the eye and the light change at most at 2
+  // sigma_t): the largest length step, at the end further from the foot, is
+  // h (1 + tan^2) times the angle step.
+  k = max(k, u_tau_rate * g_h * (1.0 + max(ta * ta, tb * tb)) * dtheta);
+#endif
+  int n = int(clamp(ceil(k), 1.0, 64.0));
   float step = dtheta / float(n);
   float x = 0.5 * step, x2 = x * x;
   float tau = x * (1.0 + x2 * (1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (17.0 / 315.0))));
@@ -192,8 +249,43 @@ void main() {
 #endif
   float c = ca * c0 - sa * s0, s = sa * c0 + ca * s0;
   vec3 sum = vec3(0.0);
+#if SHADOW
+  float bc = ca, bs = sa;  // the start of the current step
+  float v0 = vis_at(bc, bs);
+#endif
   for (int i = 0; i < n; i++) {
+#if SHADOW
+    // Visibility: where it changes between a step's ends, the step holds a
+    // shadow's edge: bisection finds it, and the step's visibility is the
+    // fraction on each side; elsewhere it is sampled with the rest.
+    float ec = bc * cs - bs * ss, es = bs * cs + bc * ss;
+    float v1 = vis_at(ec, es);
+    float vis = 0.5 * (v0 + v1);
+    if (abs(v1 - v0) > 0.5) {
+      float lc = bc, lsn = bs, rc = ec, rsn = es;
+      for (int j = 0; j < EDGE_STEPS; j++) {
+        float mc = lc + rc, ms = lsn + rsn, mi = inversesqrt(mc * mc + ms * ms);
+        mc *= mi;
+        ms *= mi;
+        if ((vis_at(mc, ms) > 0.5) == (v0 > 0.5)) {
+          lc = mc;
+          lsn = ms;
+        } else {
+          rc = mc;
+          rsn = ms;
+        }
+      }
+      float mc = lc + rc, ms = lsn + rsn;
+      float fe = atan(bc * ms - bs * mc, bc * mc + bs * ms) / step;
+      vis = mix(v1, v0, clamp(fe, 0.0, 1.0));
+    }
+    sum += sample_at(c, s) * vis;
+    v0 = v1;
+    bc = ec;
+    bs = es;
+#else
     sum += sample_at(c, s);
+#endif
     float c2 = c * cs - s * ss;
     s = s * cs + c * ss;
     c = c2;
