@@ -470,7 +470,8 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
             entry["reference_case"] = other.name
         ref = _run(ctx, cache, ref_adapter, truth, ref_params, "reference", say, retry_failed)
         entry["reference"] = {"status": ref["status"], "error": ref.get("error"),
-                              "seconds": ref.get("tool_seconds")}
+                              "seconds": ref.get("tool_seconds"),
+                              "wall_seconds": ref.get("wall_seconds")}
         if ref["status"] != "ok":
             entry["error"] = "the reference failed: %s" % ref.get("error")
             continue

@@ -76,8 +76,10 @@ def _system_version(ctx, program, args=("--version",)):
                                  check=False).stdout.decode(errors="replace")
         except (OSError, subprocess.TimeoutExpired):
             out = ""
+        # The first line with a version number of three parts ("POV-Ray
+        # 3.7.0.10", "Blender 3.4.1"), not a path that holds "3.7".
         line = next((l.strip() for l in out.splitlines()
-                     if re.search(r"\d+\.\d+", l)), "")
+                     if re.search(r"(?<![/.\d])\d+\.\d+\.\d+", l)), "")
         return "%s (%d bytes, mtime %d)" % (line, st.st_size, int(st.st_mtime))
     return ctx.memo(("system", program), compute)
 

@@ -96,11 +96,13 @@ def _time_to_cells(tt):
 def _header(results):
     m = results["machine"]
     out = ["<h1>Shafts validation report</h1>",
-           "<p>Mode <b>%s</b>, %s; %s, %d CPU threads. Validation took %s (%d runs rendered, "
-           "%d from the cache).</p>" % (
+           "<p>Mode <b>%s</b>, %s; %s, %d CPU threads. This validation took %s (%d runs "
+           "rendered, %d from the cache); from an empty cache its runs take %s of "
+           "rendering.</p>" % (
                _e(results["mode"]), _e(results["date"]), _e(m.get("cpu", "unknown CPU")),
                m.get("threads", 0), _e(fmt_seconds(results.get("elapsed_seconds"))),
-               results.get("rendered", 0), results.get("cached", 0)),
+               results.get("rendered", 0), results.get("cached", 0),
+               _e(fmt_seconds(results.get("render_seconds")))),
            "<p>Every image is compared with the converged reference (lmm_tracer "
            "<code>--mode reference</code> at %d spp, seed 0) in linear radiance: "
            "<b>error</b> is the relative RMS error over the lit region (pixels whose reference "
@@ -342,12 +344,15 @@ def summary_markdown(results):
     rix = renderer_index(results)
     m = results["machine"]
     out = ["# Validation summary (%s mode)" % results["mode"], "",
-           "Written by `validation/validate.py --%s` on %s (%s, %d CPU threads; %s). "
-           "Errors are relative RMS over the lit region against lmm_tracer's reference at "
-           "%d spp; times are the renderers' own (docs/validation.md)."
+           "Written by `validation/validate.py --%s` on %s (%s, %d CPU threads; its runs "
+           "take %s of rendering from an empty cache; this one took %s with %d runs "
+           "rendered and %d from the cache). Errors are relative RMS over the lit region "
+           "against lmm_tracer's reference at %d spp; times are the renderers' own "
+           "(docs/validation.md)."
            % (results["mode"], results["date"], m.get("cpu", "unknown CPU"), m.get("threads", 0),
-              "validation took " + fmt_seconds(results.get("elapsed_seconds")),
-              results["reference_spp"]), "",
+              fmt_seconds(results.get("render_seconds")),
+              fmt_seconds(results.get("elapsed_seconds")), results.get("rendered", 0),
+              results.get("cached", 0), results["reference_spp"]), "",
            "## Renderers", "", "| renderer | status | version |", "|---|---|---|"]
     for r in results["renderers"]:
         out.append("| %s | %s | %s |" % (r["label"], "available" if r["available"]

@@ -205,6 +205,20 @@ class Validation:
             entry["self_check_spp"] = top["params"]["spp"]
 
 
+def render_seconds(results):
+    """The wall time of every run of the report, rendered now or cached:
+    what the validation costs from an empty cache, comparisons aside."""
+    total = 0.0
+    for s in results["scenes"]:
+        total += (s.get("reference") or {}).get("wall_seconds") or 0.0
+        total += sum(r.get("wall_seconds") or 0.0 for r in s.get("runs", []))
+    hc = results.get("hard_cases") or {}
+    for c in hc.get("cases", []):
+        total += (c.get("reference") or {}).get("wall_seconds") or 0.0
+        total += sum(r.get("wall_seconds") or 0.0 for r in c.get("renderings", []))
+    return total
+
+
 def parse_args(argv):
     ap = argparse.ArgumentParser(
         description="Cross-renderer validation against the converged reference "
@@ -290,6 +304,7 @@ def main(argv=None):
     def save():
         results["elapsed_seconds"] = time.time() - started
         results["rendered"], results["cached"] = val.rendered, val.cached
+        results["render_seconds"] = render_seconds(results)
         write_atomic(report_dir / "results.json", json.dumps(results, indent=1) + "\n")
         report.write_html(results, report_dir)
         write_atomic(report_dir / "summary.md", report.summary_markdown(results))
