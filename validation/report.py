@@ -387,9 +387,13 @@ def summary_markdown(results):
     for s in results["scenes"]:
         if s.get("error"):
             continue
+        plots = "![speed against error](plots/%s)" % os.path.basename(s["plot"])
+        if s.get("plot_masked"):
+            plots += " ![away from the lights](plots/%s)" % os.path.basename(s["plot_masked"])
         out += ["### %s" % s["name"], "",
                 "Reference: %s, %s." % (s["reference"]["label"],
                                         fmt_seconds(s["reference"].get("tool_seconds"))), "",
+                plots, "",
                 "| renderer | setting | time | error | away from lights | PSNR | max abs. | scale |",
                 "|---|---|---:|---:|---:|---:|---:|---:|"]
         for run in s["runs"]:

@@ -247,6 +247,9 @@ def parse_args(argv):
                     help="render again the runs that failed last time")
     ap.add_argument("--strict", action="store_true",
                     help="exit with status 1 if a hard-case check failed")
+    ap.add_argument("--pages-only", action="store_true",
+                    help="rewrite index.html and summary.md from DIR/results.json, "
+                         "rendering nothing")
     ap.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
     args = ap.parse_args(argv)
     args.mode = args.mode or "quick"
@@ -257,6 +260,16 @@ def main(argv=None):
     args = parse_args(argv)
     started = time.time()
     say = (lambda m: None) if args.quiet else (lambda m: print(m, flush=True))
+    if args.pages_only:
+        try:
+            results = json.loads((Path(args.report) / "results.json").read_text())
+        except (OSError, ValueError) as e:
+            print("validate: cannot read %s/results.json: %s" % (args.report, e), file=sys.stderr)
+            return 2
+        report.write_html(results, args.report)
+        write_atomic(Path(args.report) / "summary.md", report.summary_markdown(results))
+        say("rewrote %s/index.html and summary.md" % args.report)
+        return 0
     root = HERE.parent
     build = Path(args.build_dir or root / "build")
     mode = MODES[args.mode]

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# The gl_shafts benchmark: the seed's table-1 scenes (teapot spotlight, five
+# spots on a stage, mountains, stained glass) at 640x480 with the default
+# settings, timed in-process (the GL context and shader compilation counted
+# apart, in the first frame) against the converged reference renderer; then,
+# with --sweeps, how error and time move with the planes and the lattice
+# (the seed's figures 5 and 6) and with the sub-samples. Prints Markdown
+# tables; docs/gl_shafts.md quotes them.
+#
+#   gl_shafts/bench.sh [--build DIR] [--frames N] [--ref-spp N] [--sweeps]
+#
+# References are rendered once (about a minute each at 512 samples) and
+# kept in DIR/gl_shafts_refs, named after the scene file's contents.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/.." && pwd)
+build=$root/build frames=10 spp=512 sweeps=0
+while [ $# -gt 0 ]; do
+  case $1 in
+    --build) build=$2; shift 2 ;;
+    --frames) frames=$2; shift 2 ;;
+    --ref-spp) spp=$2; shift 2 ;;
+    --sweeps) sweeps=1; shift ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    *) echo "bench.sh: unknown argument '$1'" >&2; exit 2 ;;
+  esac
+done
+bench=$build/gl_shafts/gl_shafts_bench
+[ -x "$bench" ] || { echo "bench.sh: build first: $bench is missing" >&2; exit 2; }
+cache=$build/gl_shafts_refs
+mkdir -p "$cache"
+scenes=()
+for s in teapot_spot stage_5spots mountains_sun stained_glass; do
+  scenes+=("$root/scenes/$s.json")
+done
+run() { "$bench" --size 640 480 --frames "$frames" --ref-spp "$spp" --cache "$cache" "$@"; }
+
+echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
+     "$(date -u +%Y-%m-%dT%H:%MZ)"
+echo
+echo "### Defaults, 640x480"
+echo
+run "${scenes[@]}"
+[ "$sweeps" = 1 ] || exit 0
+
+teapot=$root/scenes/teapot_spot.json
+echo
+echo "### Planes (figure 5: lattice 40x40), teapot spotlight"
+echo
+run --lattice 40 40 --sweep-planes 15,30,75,150 --sweep-xi "$teapot"
+echo
+echo "### Lattice (figure 6: 75 planes), teapot spotlight"
+echo
+run --planes 75 --xi lattice --sweep-lattice 5,20,80 "$teapot"
+echo
+echo "### Sub-samples: degrees a sample spans at a point or spot light"
+echo
+run --sub-angle 16 "$teapot" "$root/scenes/stage_5spots.json"
+for a in 8 4 2 1; do
+  run --sub-angle "$a" "$teapot" "$root/scenes/stage_5spots.json" | tail -n +3
+done
+echo
+echo "### Planes for directional lights (defaults otherwise)"
+echo
+run --sweep-planes 4,8,16,32 "$root/scenes/mountains_sun.json" "$root/scenes/stained_glass.json"
