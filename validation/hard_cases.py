@@ -484,6 +484,10 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
         for adapter in adapters:
             if case.only and adapter.name not in case.only:
                 continue
+            if min(prepared.width, prepared.height) < adapter.min_image_side:
+                entry.setdefault("skipped", []).append(
+                    {"renderer": adapter.name, "why": adapter.min_image_why})
+                continue
             if adapter.name in case.extra:
                 settings = [("case", label, dict(adapter.hard_case_settings(ctx)[0][2], **p))
                             for label, p in case.extra[adapter.name]]

@@ -98,6 +98,10 @@ class Adapter:
     colour = "#000000"
     # What the report says about the renderer's relation to the reference.
     about = ""
+    # The smallest image side the renderer can render, and why; the hard
+    # cases skip (and report) what is smaller.
+    min_image_side = 1
+    min_image_why = ""
 
     def missing(self, ctx):
         """None if the renderer can run, else a sentence saying why not."""
@@ -321,6 +325,10 @@ def _blender_frame_seconds(text):
 
 class _Blender(Adapter):
     """Shared by Cycles and EEVEE: export, run Blender, read its time."""
+
+    min_image_side = 4
+    min_image_why = ("Blender renders at least 4 pixels a side: asked for 1x1 or 3x3, "
+                     "Blender 3.4 writes a 4x4 image")
 
     def missing(self, ctx):
         if not _executable(ctx.tool(EXPORTER)):

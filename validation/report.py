@@ -290,6 +290,9 @@ def _hard_section(hc, results, base):
         if c.get("error"):
             out.append('<p class="fail">%s</p>' % _e(c["error"]))
             continue
+        for sk in c.get("skipped", []):
+            out.append("<p>Not rendered by %s: %s.</p>" % (_e(rix[sk["renderer"]]["label"]),
+                                                          _e(sk["why"])))
         out.append("<table><tr><th>renderer</th><th>setting</th><th>result</th><th>stability</th>"
                    "<th>error</th><th>invariance</th><th>time</th><th>image</th><th>difference</th></tr>")
         if c["reference"].get("png"):
@@ -424,6 +427,9 @@ def summary_markdown(results):
         for c in hc["cases"]:
             if c.get("error"):
                 out.append("| %s | | | %s | | |" % (c["name"], c["error"]))
+            for sk in c.get("skipped", []):
+                out.append("| %s | %s | | not rendered | %s | |" % (
+                    c["name"], rix[sk["renderer"]]["label"], sk["why"]))
             for r in c["renderings"]:
                 checks = {k["name"]: k for k in r["checks"]}
                 err = checks.get("error")

@@ -16,6 +16,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 import hard_cases  # noqa: E402
+import renderers  # noqa: E402
 import report  # noqa: E402
 from metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach  # noqa: E402
 from runs import RunCache, RunFailed, execute, run_key  # noqa: E402
@@ -225,6 +226,22 @@ class ReportTest(unittest.TestCase):
             self.assertIn("cannot read", page)
             md = report.summary_markdown(results)
             self.assertIn("| s | 4x3 | gl_shafts | – | – | 200 ms | 3 % (200 ms) |", md)
+
+    def test_hard_case_skipped_by_a_renderer_is_reported(self):
+        with tempfile.TemporaryDirectory() as d:
+            results = fake_results(d)
+            why = renderers.Cycles.min_image_why
+            results["hard_cases"] = {
+                "reference_spp": 16, "renderers": ["gl_shafts"], "failures": [],
+                "known_failures": [], "bounds": [],
+                "cases": [{"name": "image_1x1", "description": "one pixel", "width": 1,
+                           "height": 1, "masked_pixels": 0, "reference": {"seconds": 0.1},
+                           "renderings": [],
+                           "skipped": [{"renderer": "gl_shafts", "why": why}]}]}
+            report.write_html(results, d)
+            self.assertIn("Not rendered by", (Path(d) / "index.html").read_text())
+            self.assertIn("| image_1x1 | gl_shafts | | not rendered | " + why,
+                          report.summary_markdown(results))
 
 
 if __name__ == "__main__":
