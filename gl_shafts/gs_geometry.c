@@ -35,7 +35,11 @@ static sh_vec3 vertex(const sh_mesh *m, unsigned i) {
 }
 
 /* The tessellation error for a curved shape of radius r around object-space
- * point c: a quarter of a pixel's footprint at its nearest distance. */
+ * point c: 1/64 of a pixel's footprint at its nearest distance. Silhouettes
+ * would need a quarter, but the shading of a cylinder's wall (drawn on its
+ * inscribed facets with exact normals) shows every facet in its highlights:
+ * the Debelov table's error falls from 4.3% at a quarter pixel to 2.0% at
+ * 1/64 (the rest is shadow-map edges), for 376 triangles instead of 112. */
 static double curve_error(const sh_shape *s, const gs__view *view, sh_vec3 c,
                           double r) {
   sh_vec3 w = sh_xform_point(&s->xform, c);
@@ -44,7 +48,7 @@ static double curve_error(const sh_shape *s, const gs__view *view, sh_vec3 c,
   scale = fmax(scale, sh_length(sh_xform_vector(&s->xform, sh_v3(0, 0, 1))));
   double dist = sh_length(sh_sub(w, view->frame.origin)) - r * scale;
   double pixel = 2.0 * view->frame.tan_half_y / view->height;
-  double e = 0.25 * pixel * fmax(dist, 0.0) / scale;
+  double e = pixel / 64 * fmax(dist, 0.0) / scale;
   return fmax(e, 1e-4 * r);
 }
 
