@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sh_file.h"
 
@@ -32,6 +33,38 @@ int sh_cli_double(const char *tool, const char *option, const char *text,
     return 0;
   }
   *out = v;
+  return 1;
+}
+
+int sh_cli_operand(const char *tool, const char *arg, const char **slots[],
+                   int n) {
+  if (arg[0] == '-' && arg[1] != '\0') {
+    fprintf(stderr, "%s: unknown option '%s' (see --help)\n", tool, arg);
+    return 0;
+  }
+  for (int k = 0; k < n; k++)
+    if (!*slots[k]) {
+      *slots[k] = arg;
+      return 1;
+    }
+  fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", tool, arg);
+  return 0;
+}
+
+int sh_cli_check_render_outputs(const char *tool, const char *scene,
+                                const char *const *outputs, int noutputs) {
+  if (!scene || noutputs <= 0) {
+    fprintf(stderr, "%s: need a scene file and -o OUTPUT (see --help)\n", tool);
+    return 0;
+  }
+  for (int k = 0; k < noutputs; k++) {
+    char ext[16];
+    sh_file_extension(outputs[k], ext, sizeof ext);
+    if (strcmp(ext, "exr") && strcmp(ext, "png")) {
+      fprintf(stderr, "%s: output '%s' must end in .exr or .png\n", tool, outputs[k]);
+      return 0;
+    }
+  }
   return 1;
 }
 

@@ -17,6 +17,19 @@ int sh_cli_int(const char *tool, const char *option, const char *text,
 int sh_cli_double(const char *tool, const char *option, const char *text,
                   double *out);
 
+/* Takes an argument that matched no option as the next operand: it fills
+ * the first of the n slots still NULL. An unknown option ("-x"; a lone "-"
+ * is an operand) or one operand too many prints an error naming it and
+ * returns 0; else returns 1. */
+int sh_cli_operand(const char *tool, const char *arg, const char **slots[],
+                   int n);
+
+/* Checks what a renderer's command line must give: a scene file and at
+ * least one output, each ending in .exr or .png. Prints the problem and
+ * returns 0, else returns 1. */
+int sh_cli_check_render_outputs(const char *tool, const char *scene,
+                                const char *const *outputs, int noutputs);
+
 /* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
  * status for it (sh_exit_code). */
 int sh_cli_report(const char *tool, const sh_error *err);

@@ -156,32 +156,16 @@ static int parse_args(int argc, char **argv, args *a) {
     } else if (!strcmp(o, "--exposure")) {
       ok = sh_cli_double(TOOL, o, v, &a->exposure);
       a->has_exposure = 1;
-    } else if (o[0] == '-' && o[1] != '\0') {
-      fprintf(stderr, "%s: unknown option '%s' (see --help)\n", TOOL, o);
-      return 2;
-    } else if (!a->scene) {
-      a->scene = o;
-      continue;
     } else {
-      fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", TOOL, o);
-      return 2;
+      const char **operands[] = {&a->scene};
+      if (!sh_cli_operand(TOOL, o, operands, 1)) return 2;
+      continue;
     }
     if (!ok) return 2;
     i++;
   }
-  if (!a->scene || !a->noutputs) {
-    fprintf(stderr, "%s: need a scene file and -o OUTPUT (see --help)\n", TOOL);
+  if (!sh_cli_check_render_outputs(TOOL, a->scene, a->outputs, a->noutputs))
     return 2;
-  }
-  for (int k = 0; k < a->noutputs; k++) {
-    char ext[16];
-    sh_file_extension(a->outputs[k], ext, sizeof ext);
-    if (strcmp(ext, "exr") && strcmp(ext, "png")) {
-      fprintf(stderr, "%s: output '%s' must end in .exr or .png\n", TOOL,
-              a->outputs[k]);
-      return 2;
-    }
-  }
   if (a->refined && a->mode != MODE_LMM) {
     fprintf(stderr, "%s: --refined needs --mode lmm --scheme refract-both\n",
             TOOL);

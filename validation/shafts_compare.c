@@ -92,18 +92,10 @@ static int parse_args(int argc, char **argv, args *a) {
     } else if (!strcmp(o, "--max-rel-rms")) {
       ok = sh_cli_double(TOOL, o, v, &a->max_rel_rms) && a->max_rel_rms >= 0;
       if (!ok) fprintf(stderr, "%s: --max-rel-rms expects a number >= 0\n", TOOL);
-    } else if (o[0] == '-' && o[1] != '\0') {
-      fprintf(stderr, "%s: unknown option '%s' (see --help)\n", TOOL, o);
-      return 2;
-    } else if (!a->ref) {
-      a->ref = o;
-      continue;
-    } else if (!a->img) {
-      a->img = o;
-      continue;
     } else {
-      fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", TOOL, o);
-      return 2;
+      const char **operands[] = {&a->ref, &a->img};
+      if (!sh_cli_operand(TOOL, o, operands, 2)) return 2;
+      continue;
     }
     if (!ok) return 2;
     i++;
