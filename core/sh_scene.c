@@ -21,6 +21,11 @@ void sh_scene_free(sh_scene *scene) {
   free(scene);
 }
 
+void sh_scene_image_size(const sh_scene *scene, int *width, int *height) {
+  *width = scene->camera.width;
+  *height = scene->camera.height;
+}
+
 int sh_scene_has_semitransparent(const sh_scene *scene) {
   for (int i = 0; i < scene->nmaterials; i++)
     if (!sh_is_black(scene->materials[i].transmit)) return 1;

@@ -159,6 +159,10 @@ typedef struct sh_scene {
 /* Frees everything the scene owns, then the scene. NULL is allowed. */
 void sh_scene_free(sh_scene *scene);
 
+/* The camera's image size in pixels, for callers that see the scene only
+ * through this API (language bindings). */
+void sh_scene_image_size(const sh_scene *scene, int *width, int *height);
+
 /* True if any material has a non-black transmit colour. */
 int sh_scene_has_semitransparent(const sh_scene *scene);
 

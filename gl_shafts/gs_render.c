@@ -176,6 +176,11 @@ static sh_status upload_map(const sh_light *l, int res, GLuint *out, sh_error *e
 sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err) {
   *out = NULL;
+  gs_options defaults;
+  if (!opt) {
+    defaults = gs_options_defaults(scene);
+    opt = &defaults;
+  }
   sh_status st = gs_options_check(opt, err);
   if (st != SH_OK) return st;
   gs_renderer *r = calloc(1, sizeof *r);

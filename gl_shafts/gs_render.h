@@ -106,7 +106,8 @@ typedef struct gs_stats {
 typedef struct gs_renderer gs_renderer;
 
 /* Creates a renderer for a scene, which must outlive it: a GL context, the
- * scene's triangles and light maps uploaded. The options are copied. */
+ * scene's triangles and light maps uploaded. The options are copied; NULL
+ * means gs_options_defaults(scene). */
 sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err);
 
