@@ -17,8 +17,9 @@ changed and an interrupted run resumes. A renderer that is missing or fails
 is skipped with a note in the report.
 
 Exit status: 0 when the report is written (renderer failures are in it;
-with --strict, 1 if a hard case failed), 2 for bad arguments or a missing
-build.
+with --strict, 1 if a hard case failed), 1 if the reference itself failed
+for a scene or a hard case (the report then measures nothing there), 2 for
+bad arguments or a missing build.
 """
 
 import argparse
@@ -271,7 +272,8 @@ def main(argv=None):
         say("rewrote %s/index.html and summary.md" % args.report)
         return 0
     root = HERE.parent
-    build = Path(args.build_dir or root / "build")
+    # Absolute: the renderers run in their own work directories.
+    build = Path(args.build_dir or root / "build").resolve()
     mode = MODES[args.mode]
     ctx = renderers.Context(root, build, mode=args.mode, timeout=args.timeout, say=say)
     if not ctx.tool("validation/shafts_compare").exists() or renderers.REFERENCE.missing(ctx):
@@ -353,6 +355,12 @@ def main(argv=None):
         for f in failed:
             say("  FAIL %s / %s %s: %s: %s" % f)
     say("report: %s" % (report_dir / "index.html"))
+    no_reference = [s["name"] for s in results["scenes"] if s.get("error")]
+    if results["hard_cases"]:
+        no_reference += [c["name"] for c in results["hard_cases"]["cases"] if c.get("error")]
+    if no_reference:
+        say("the reference failed for: %s" % ", ".join(no_reference))
+        return 1
     return 1 if (args.strict and failed) else 0
 
 
