@@ -60,6 +60,13 @@ for a in 8 4 2 1; do
   run --sub-angle "$a" "$teapot" "$root/scenes/stage_5spots.json" | tail -n +3
 done
 echo
+echo "### Sub-samples: light-map texels (gobo or window) a sample spans"
+echo
+run --sub-texels 8 "$root/scenes/stage_5spots.json" "$root/scenes/stained_glass.json"
+for t in 4 2 1; do
+  run --sub-texels "$t" "$root/scenes/stage_5spots.json" "$root/scenes/stained_glass.json" | tail -n +3
+done
+echo
 echo "### Planes for directional lights (defaults otherwise)"
 echo
 run --sweep-planes 4,8,16,32 "$root/scenes/mountains_sun.json" "$root/scenes/stained_glass.json"

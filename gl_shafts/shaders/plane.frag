@@ -225,6 +225,14 @@ void main() {
   // branch and every loop to its longest lane, so the code has none but
   // this loop.
   float k = dtheta * u_inv_sub_angle;
+#if LIGHT_TYPE == 1 && HAS_MAP
+  // A gobo: also one sample per u_sub_texels texels of the map that the
+  // part's projection from the light crosses (a straight segment: the
+  // projection of a line), which near the apex are many per degree.
+  vec2 ga = vec2(sa * g_dr - ca * g_er, sa * g_du - ca * g_eu) / (sa * g_da - ca * g_ea);
+  vec2 gb = vec2(sb * g_dr - cb * g_er, sb * g_du - cb * g_eu) / (sb * g_da - cb * g_ea);
+  k = max(k, length((gb - ga) * (0.5 * u_spot.w) * u_map_size) * u_inv_sub_texels);
+#endif
 #if TAU_SUB
   // In a dense medium also one sample per optical depth u_sub_tau / 2 (the
   // transmittances towards the eye and the light change at most at 2
