@@ -236,11 +236,17 @@ def card_material(item, images, index):
     return mat
 
 
-def volume_material(item):
+def volume_material(item, engine):
     """The medium: Volume Scatter lobes (sigma_s = colour * density,
     Henyey-Greenstein) and Volume Absorption (sigma_a = (1 - colour) *
-    density), no surface."""
+    density), no surface. Several lobes are an equal-weight mixture for
+    Cycles, which sums their phases; EEVEE, which averages their g, gets its
+    own single lobe ("eevee") when there is one."""
     mat, tree, out = new_material("medium")
+    if engine == "eevee" and "eevee" in item:
+        item = item["eevee"]
+        if not isinstance(item, dict):
+            raise DataError("medium.eevee: expected an object")
     mat.cycles.homogeneous_volume = True
     mat.cycles.volume_sampling = "MULTIPLE_IMPORTANCE"
     parts = []
@@ -472,7 +478,7 @@ def build(data, base_dir, opts):
         lo = numbers(item.get("min"), 3, "medium.min")
         hi = numbers(item.get("max"), 3, "medium.max")
         mesh = box_mesh(lo, hi)
-        mesh.materials.append(volume_material(item))
+        mesh.materials.append(volume_material(item, opts["engine"]))
         new_object("medium", mesh, scene)
         medium_box = (lo, hi)
 

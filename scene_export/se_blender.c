@@ -290,27 +290,63 @@ static json_t *medium(blend *b) {
   sh_vec3 hi = to_blender(sh_add(m->bmax, sh_v3s(eps)));
   sh_vec3 blo = sh_vmin(lo, hi), bhi = sh_vmax(lo, hi);
   int exact;
-  double g = se_phase_to_hg(&m->phase, &exact);
-  if (!exact)
-    se_note(b->notes,
-            "medium: Cycles has one Henyey-Greenstein lobe per medium; the %s "
-            "phase is rendered as g = %.4g, its mean cosine%s.",
-            se_phase_name(m->phase.type), g,
-            m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
-  json_t *scatter = json_array();
+  double gs[SE_HG_MAX_LOBES];
+  int n = se_phase_to_hg_lobes(&m->phase, gs, &exact);
   sh_vec3 unit;
   double ds = split_colour(m->sigma_s, &unit);
-  if (ds > 0)
+  /* Cycles drops a closure whose mean weight is below 1e-5 (its
+   * CLOSURE_WEIGHT_CUTOFF) but keeps its extinction: a mixture is used only
+   * while every lobe stays well above that. */
+  if (n > 1 && ds * (unit.x + unit.y + unit.z) / 3.0 / ((double)n * n) < 1e-4) {
+    gs[0] = se_phase_to_hg(&m->phase, &exact);
+    n = 1;
+  }
+  double g1 = se_phase_to_hg(&m->phase, &exact);
+  if (!exact && n > 1)
+    se_note(b->notes,
+            "medium: Cycles has no %s phase; it is an equal-weight mixture of %d "
+            "Henyey-Greenstein lobes fitted to it (EEVEE: one lobe, g = %.4g, its "
+            "mean cosine).",
+            se_phase_name(m->phase.type), n, g1);
+  else if (!exact)
+    se_note(b->notes,
+            "medium: Cycles has no %s phase; it is rendered as one Henyey-Greenstein "
+            "lobe, g = %.4g, its mean cosine%s.",
+            se_phase_name(m->phase.type), g1,
+            m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
+  /* n lobes of density sigma_s / n^2 (Cycles sums their phases unweighted,
+   * se_phase.h) and the scattering they leave out, sigma_s (1 - 1/n), as
+   * absorption. */
+  json_t *scatter = json_array();
+  for (int i = 0; ds > 0 && i < n; i++)
     json_array_append_new(scatter, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
-                                             "density", ds, "anisotropy", g));
+                                             "density", ds / ((double)n * n),
+                                             "anisotropy", gs[i]));
   json_t *o = json_pack("{s:o, s:o, s:o}", "min", vec(blo), "max", vec(bhi), "scatter",
                         scatter);
-  double da = sh_max3(m->sigma_a);
+  sh_vec3 sa = sh_add(m->sigma_a, sh_scale(m->sigma_s, 1.0 - 1.0 / n));
+  double da = sh_max3(sa);
   if (o && da > 0)
     json_object_set_new(o, "absorption",
                         json_pack("{s:o, s:f}", "color",
-                                  vec(sh_sub(sh_v3s(1.0), sh_scale(m->sigma_a, 1.0 / da))),
+                                  vec(sh_sub(sh_v3s(1.0), sh_scale(sa, 1.0 / da))),
                                   "density", da));
+  if (o && n > 1) {
+    /* EEVEE adds the scattering of its closures and averages their g: it
+     * gets the single lobe of the mean cosine. */
+    json_t *e = json_array();
+    if (ds > 0)
+      json_array_append_new(e, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
+                                         "density", ds, "anisotropy", g1));
+    json_t *eo = json_pack("{s:o}", "scatter", e);
+    double ea = sh_max3(m->sigma_a);
+    if (eo && ea > 0)
+      json_object_set_new(eo, "absorption",
+                          json_pack("{s:o, s:f}", "color",
+                                    vec(sh_sub(sh_v3s(1.0), sh_scale(m->sigma_a, 1.0 / ea))),
+                                    "density", ea));
+    if (eo) json_object_set_new(o, "eevee", eo);
+  }
   return o;
 }
 

@@ -1,0 +1,55 @@
+/* Cycles' phase lobes: at most SE_HG_MAX_LOBES, distinct g (Cycles merges
+ * equal ones), exact where the phase is one lobe, and the Rayleigh mixture
+ * within its fitted error at every angle. */
+#include <math.h>
+
+#include "se_phase.h"
+#include "sh_medium.h"
+#include "sh_test.h"
+
+static double hg(double g, double c) {
+  return (1.0 - g * g) / (4.0 * 3.14159265358979323846 * pow(1.0 + g * g - 2.0 * g * c, 1.5));
+}
+
+/* The largest relative error over cos in [-1, 1] of the equal-weight
+ * mixture of the n lobes g against the phase. */
+static double max_rel(const sh_phase *p, const double *g, int n) {
+  double worst = 0.0;
+  for (int i = 0; i <= 2000; i++) {
+    double c = -1.0 + i / 1000.0, m = 0.0;
+    for (int k = 0; k < n; k++) m += hg(g[k], c) / n;
+    double t = sh_phase_eval(p, c);
+    worst = fmax(worst, fabs(m - t) / t);
+  }
+  return worst;
+}
+
+int main(void) {
+  const sh_phase_type types[] = {SH_PHASE_ISOTROPIC, SH_PHASE_HENYEY_GREENSTEIN,
+                                 SH_PHASE_NISHITA_HAZY, SH_PHASE_NISHITA_MURKY,
+                                 SH_PHASE_RAYLEIGH};
+  for (int t = 0; t < 5; t++) {
+    sh_phase p = {types[t], types[t] == SH_PHASE_HENYEY_GREENSTEIN ? 0.6 : 0.0};
+    double g[SE_HG_MAX_LOBES];
+    int exact = -1, exact1 = -1;
+    int n = se_phase_to_hg_lobes(&p, g, &exact);
+    double g1 = se_phase_to_hg(&p, &exact1);
+    SH_CHECK(n >= 1 && n <= SE_HG_MAX_LOBES);
+    SH_CHECK(exact == exact1);
+    for (int i = 0; i < n; i++) {
+      SH_CHECK(fabs(g[i]) <= 1.0 - 1e-3);
+      for (int j = 0; j < i; j++) SH_CHECK(g[i] != g[j]);
+    }
+    if (n == 1) SH_CHECK(g[0] == g1);
+    if (exact) SH_CHECK(n == 1 && max_rel(&p, g, n) < 1e-9);
+    /* A mixture must beat the single lobe of the mean cosine. */
+    if (n > 1) SH_CHECK(max_rel(&p, g, n) < max_rel(&p, &g1, 1));
+  }
+  sh_phase r = {SH_PHASE_RAYLEIGH, 0.0};
+  double g[SE_HG_MAX_LOBES];
+  int exact;
+  int n = se_phase_to_hg_lobes(&r, g, &exact);
+  SH_CHECK(!exact && n == 2);
+  SH_CHECK(max_rel(&r, g, n) < 0.08);
+  SH_TEST_DONE();
+}
