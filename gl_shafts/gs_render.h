@@ -50,10 +50,11 @@ typedef struct gs_options {
                                its part of the ray subtends at the light,
                                so rays passing near a light are sampled
                                finely (at most 64 samples); (0, 30] */
-  double sub_texels;        /* directional lights with a window: a plane's
+  double sub_texels;        /* lights with a map (a spot's gobo, a
+                               directional light's window): a plane's
                                fragment takes one sample per this many
-                               texels of the window's pattern its part of
-                               the ray crosses (at most 64 samples) */
+                               texels of the map its part of the ray
+                               crosses (at most 64 samples) */
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
@@ -68,7 +69,7 @@ typedef struct gs_options {
 #define GS_DEFAULT_XI SH_XI_EXACT
 #define GS_DEFAULT_JITTER 0
 #define GS_DEFAULT_SUB_ANGLE_DEG 4.0
-#define GS_DEFAULT_SUB_TEXELS 4.0
+#define GS_DEFAULT_SUB_TEXELS 2.0
 
 /* The defaults, overridden by the scene's render keys that are given. */
 gs_options gs_options_defaults(const sh_scene *scene);

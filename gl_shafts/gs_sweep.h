@@ -41,7 +41,7 @@ typedef struct gs__sweep_job {
   int planes, jitter;
   double sub_angle;             /* radians a sample may span, seen from a
                                    point or spot light */
-  double sub_texels;            /* window texels a sample may span */
+  double sub_texels;            /* map texels a sample may span */
   int map_width, map_height;    /* the light map texture's size */
 } gs__sweep_job;
 

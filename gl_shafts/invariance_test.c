@@ -51,8 +51,12 @@ int main(void) {
   sh_scene *a = scene(1.0, 1.0), *b = scene(2.5, 1.0);
   SH_CHECK(a && b);
   sh_image ia = {0}, ib = {0};
+  /* Not quite float precision: a fragment's sub-sample count is the ceiling
+   * of a rate computed in float, which rounding can move by one between the
+   * scales in a few fragments (1.1e-4 measured with the gobo sampled per
+   * two texels). */
   if (a && b && tu_gl(a, NULL, &ia) == SH_OK && tu_gl(b, NULL, &ib) == SH_OK)
-    SH_CHECK(tu_check_close("scale_invariance", &ib, &ia, 1e-4));
+    SH_CHECK(tu_check_close("scale_invariance", &ib, &ia, 3e-4));
   else
     SH_CHECK(0);
 
