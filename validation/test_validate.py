@@ -170,7 +170,9 @@ class HardCasesTest(unittest.TestCase):
                                          rel_tol=1e-9))
 
     def test_bounds(self):
-        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.10)
+        self.assertEqual(hard_cases.bound_for("lmm_tracer", "user", "dense", "quick"), 0.25)
+        self.assertEqual(hard_cases.bound_for("lmm_tracer", "user", "dense", "full"), 0.05)
+        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.02)
         self.assertEqual(hard_cases.bound_for("gl_shafts", "case", "base", "quick"),
                          hard_cases.bound_for("gl_shafts", "user", "base", "quick"))
         self.assertIsNone(hard_cases.bound_for("eevee", "user", "base", "full"))
