@@ -4,12 +4,7 @@
 # a statistics file, and the same command gives the same image.
 set -u
 tool=$1
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
-check() { # description, expected status, actual status
-  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
-}
+. "$(dirname "$0")/../tools/cli_test_lib.sh"
 
 "$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
 grep -q "usage: lmm_tracer" "$dir/help" || { echo "FAIL: --help text"; fail=1; }

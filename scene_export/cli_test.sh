@@ -11,15 +11,7 @@ set -u
 tool=$1
 src=$2
 data=$src/scene_export/testdata
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
-check() { # description, expected status, actual status
-  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
-}
-empty() { # description, directory: nothing may have been written there
-  if [ -n "$(ls -A "$2")" ]; then echo "FAIL: $1 wrote: $(ls -A "$2")"; fail=1; fi
-}
+. "$(dirname "$0")/../tools/cli_test_lib.sh"
 
 "$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
 grep -q "usage: scene_export" "$dir/help" || { echo "FAIL: --help text"; fail=1; }

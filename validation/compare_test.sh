@@ -4,20 +4,7 @@
 # bad arguments. The test images come from lmm_tracer and oiiotool.
 set -u
 tool=$1 tracer=$2
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-fail=0
-check() { # description, expected status, actual status
-  if [ "$2" != "$3" ]; then echo "FAIL: $1: exit $3, expected $2"; fail=1; fi
-}
-field() { # json file, key: prints the value
-  python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])' "$1" "$2"
-}
-near() { # description, value, expected, tolerance
-  if ! python3 -c 'import sys; a,b,t=map(float,sys.argv[1:]); sys.exit(abs(a-b)>t)' "$2" "$3" "$4"; then
-    echo "FAIL: $1: $2, expected $3 +- $4"; fail=1
-  fi
-}
+. "$(dirname "$0")/../tools/cli_test_lib.sh"
 
 cat >"$dir/s.json" <<'JSON'
 {"format": "shafts-scene", "version": 1,
