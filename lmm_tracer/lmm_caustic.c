@@ -19,11 +19,11 @@ struct lmm_caustics {
   entry *table;
   uint64_t mask, count;
   int nlights;
-  int n[3];
+  lmm_grid grid;
 };
 
 static uint64_t key_of(const lmm_caustics *c, int i, int j, int k, int l) {
-  uint64_t lin = (uint64_t)i + (uint64_t)c->n[0] * ((uint64_t)j + (uint64_t)c->n[1] * k);
+  uint64_t lin = lmm_grid_index(&c->grid, i, j, k);
   return 1 + lin * (uint64_t)c->nlights + (uint64_t)l;
 }
 
@@ -71,8 +71,7 @@ typedef struct tracer {
   lmm_caustics *c;
   const sh_scene *scene;
   const sh_rt *rt;
-  const lmm_mesh *mesh;
-  sh_vec3 origin;
+  const lmm_grid *grid;
   double h, rho;
   int light;
   sh_vec3 light_pos;
@@ -89,12 +88,12 @@ static int deposit(tracer *tr, sh_vec3 a, sh_vec3 d, double len, sh_vec3 w) {
   for (double s = 0.0; s <= len + step; s += step) {
     sh_vec3 q = sh_madd(a, d, fmin(s, len));
     int ijk[3], ncur = 0;
-    lmm_mesh_cell(tr->mesh, q, ijk);
+    lmm_grid_cell(tr->grid, q, ijk);
     for (int corner = 0; corner < 8; corner++) {
       int i = ijk[0] + (corner & 1), j = ijk[1] + ((corner >> 1) & 1),
           k = ijk[2] + ((corner >> 2) & 1);
-      if (!lmm_mesh_contains(tr->mesh, i, j, k)) continue;
-      sh_vec3 x = lmm_mesh_point(tr->mesh, i, j, k), ax = sh_sub(x, a);
+      if (!lmm_grid_contains(tr->grid, i, j, k)) continue;
+      sh_vec3 x = lmm_grid_point(tr->grid, i, j, k), ax = sh_sub(x, a);
       double t = sh_dot(ax, d);
       if (t < 0 || t > len || sh_dot(ax, ax) - t * t > tr->rho * tr->rho)
         continue;
@@ -133,12 +132,7 @@ static double exit_distance(sh_vec3 lo, sh_vec3 hi, sh_vec3 o, sh_vec3 d) {
 static int trace(tracer *tr, sh_vec3 o, sh_vec3 d) {
   sh_vec3 w = sh_v3s(1.0);
   int refracted = 0;
-  sh_vec3 lo = tr->origin;
-  int n[3];
-  sh_vec3 unused;
-  lmm_mesh_grid(tr->mesh, &unused, n);
-  sh_vec3 hi = sh_add(lo, sh_v3((n[0] - 1) * tr->h, (n[1] - 1) * tr->h,
-                                (n[2] - 1) * tr->h));
+  sh_vec3 lo = tr->grid->origin, hi = lmm_grid_far_corner(tr->grid);
   for (int bounce = 0; bounce < 32; bounce++) {
     sh_hit hit;
     int any = sh_rt_intersect(tr->rt, o, d, 0.0, INFINITY, &hit, NULL);
@@ -171,7 +165,7 @@ static int trace(tracer *tr, sh_vec3 o, sh_vec3 d) {
 }
 
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
-                             const lmm_mesh *mesh, int64_t rays,
+                             const lmm_grid *grid, int64_t rays,
                              lmm_caustics **out, sh_error *err) {
   *out = NULL;
   lmm_caustics *c = calloc(1, sizeof *c);
@@ -184,9 +178,9 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
   tr.c = c;
   tr.scene = scene;
   tr.rt = rt;
-  tr.mesh = mesh;
-  lmm_mesh_grid(mesh, &tr.origin, c->n);
-  tr.h = lmm_mesh_step(mesh);
+  c->grid = *grid;
+  tr.grid = &c->grid;
+  tr.h = grid->h;
   tr.rho = tr.h;
   if (!c->table) goto nomem;
   sh_rng rng;

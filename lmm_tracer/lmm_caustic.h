@@ -16,15 +16,17 @@
 
 #include <stdint.h>
 
-#include "lmm_mesh.h"
+#include "lmm_grid.h"
 #include "sh_error.h"
 #include "sh_rt.h"
 #include "sh_scene.h"
 
+typedef struct lmm_caustics lmm_caustics;
+
 /* Traces `rays` rays per light and semitransparent shape and credits the
- * points of `mesh`'s grid. Caller frees with lmm_caustics_free. */
+ * points of `grid` (copied). Caller frees with lmm_caustics_free. */
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
-                             const lmm_mesh *mesh, int64_t rays,
+                             const lmm_grid *grid, int64_t rays,
                              lmm_caustics **out, sh_error *err);
 void lmm_caustics_free(lmm_caustics *c);
 

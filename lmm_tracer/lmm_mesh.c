@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lmm_caustic.h"
 #include "sh_light.h"
 #include "sh_rng.h"
 
@@ -24,11 +23,8 @@ typedef struct slot {
 struct lmm_mesh {
   const sh_scene *scene;
   const sh_rt *rt;
-  const lmm_caustics *caustics;
-  int add_paths;
-  double h;
-  sh_vec3 origin;
-  int n[3];
+  lmm_grid grid;
+  int direct_only; /* formula 6's direct term (refract-both) */
   int nlights, bits;
   unsigned classes; /* the surfaces whose shadows the mesh softens */
   size_t value_size; /* bytes per point */
@@ -50,30 +46,17 @@ static void set_layout(lmm_mesh *m) {
 sh_status lmm_mesh_create(const sh_scene *scene, const sh_rt *rt, double h,
                           int capacity_log2, lmm_mesh **out, sh_error *err) {
   *out = NULL;
-  if (!(h > 0)) return sh_error_set(err, SH_ERR_ARG, "the mesh step must be > 0");
+  lmm_grid grid;
+  sh_status st = lmm_grid_over_scene(scene, h, &grid, err);
+  if (st != SH_OK) return st;
   lmm_mesh *m = calloc(1, sizeof *m);
   if (!m) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   m->scene = scene;
   m->rt = rt;
-  m->h = h;
+  m->grid = grid;
   m->nlights = scene->nlights;
   m->bits = !sh_scene_has_semitransparent(scene);
   m->classes = SH_RT_SOFT;
-  sh_vec3 lo, hi;
-  sh_scene_bounds(scene, &lo, &hi);
-  m->origin = sh_sub(lo, sh_v3s(h));
-  for (int a = 0; a < 3; a++) {
-    double ext = sh_vget(hi, a) - sh_vget(lo, a) + 2.0 * h;
-    double cells = ceil(ext / h) + 1.0;
-    if (cells > 2e6) {
-      free(m);
-      return sh_error_set(err, SH_ERR_ARG,
-                          "the mesh step %g is too small for a scene %g "
-                          "across: over 2 million points along an axis",
-                          h, ext);
-    }
-    m->n[a] = (int)cells;
-  }
   set_layout(m);
   int lg = capacity_log2 > 0 ? capacity_log2 : 21;
   if (lg < 8) lg = 8;
@@ -106,56 +89,25 @@ void lmm_mesh_free(lmm_mesh *m) {
   free(m);
 }
 
-void lmm_mesh_set_caustics(lmm_mesh *m, const lmm_caustics *caustics,
-                           int add_paths) {
-  m->caustics = caustics;
-  m->add_paths = add_paths;
-  if (caustics && add_paths) m->bits = 0;
-  set_layout(m);
-}
+void lmm_mesh_set_direct_only(lmm_mesh *m) { m->direct_only = 1; }
 
-void lmm_mesh_grid(const lmm_mesh *m, sh_vec3 *origin, int n[3]) {
-  *origin = m->origin;
-  n[0] = m->n[0];
-  n[1] = m->n[1];
-  n[2] = m->n[2];
-}
-
-double lmm_mesh_step(const lmm_mesh *m) { return m->h; }
-
-sh_vec3 lmm_mesh_point(const lmm_mesh *m, int i, int j, int k) {
-  return sh_add(m->origin, sh_v3(i * m->h, j * m->h, k * m->h));
-}
-
-void lmm_mesh_cell(const lmm_mesh *m, sh_vec3 p, int ijk[3]) {
-  sh_vec3 q = sh_scale(sh_sub(p, m->origin), 1.0 / m->h);
-  ijk[0] = (int)floor(q.x);
-  ijk[1] = (int)floor(q.y);
-  ijk[2] = (int)floor(q.z);
-}
-
-int lmm_mesh_contains(const lmm_mesh *m, int i, int j, int k) {
-  return i >= 0 && j >= 0 && k >= 0 && i < m->n[0] && j < m->n[1] &&
-         k < m->n[2];
-}
+const lmm_grid *lmm_mesh_grid(const lmm_mesh *m) { return &m->grid; }
 
 /* The visibility of every light from grid point x, into vis. */
 static void compute(const lmm_mesh *m, int i, int j, int k, sh_vec3 *vis,
                     sh_rt_counters *c) {
-  sh_vec3 x = lmm_mesh_point(m, i, j, k);
+  sh_vec3 x = lmm_grid_point(&m->grid, i, j, k);
   for (int l = 0; l < m->nlights; l++) {
     const sh_light *light = &m->scene->lights[l];
     sh_vec3 wi;
     double dist;
     sh_light_incident(light, x, &wi, &dist);
     double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
-    if (m->caustics) {
+    if (m->direct_only) {
       /* Formula 6: the straight path counts only if nothing at all is on
-       * it; refracted paths add their transmittance. */
+       * it. */
       int blocked = sh_rt_occluded(m->rt, x, wi, tmax, m->classes, c);
       vis[l] = sh_v3s(blocked ? 0.0 : 1.0);
-      if (m->add_paths)
-        vis[l] = sh_add(vis[l], lmm_caustics_at(m->caustics, i, j, k, l));
     } else {
       vis[l] = sh_rt_visibility_of(m->rt, x, wi, tmax, m->classes, c);
     }
@@ -212,8 +164,7 @@ static unsigned char *pool_entry(lmm_mesh *m, uint32_t v) {
  * values. */
 static const unsigned char *entry_of(lmm_mesh *m, int i, int j, int k,
                                      sh_vec3 *vis, sh_rt_counters *c) {
-  uint64_t key = 1 + (uint64_t)i +
-                 (uint64_t)m->n[0] * ((uint64_t)j + (uint64_t)m->n[1] * k);
+  uint64_t key = 1 + lmm_grid_index(&m->grid, i, j, k);
   uint64_t s = sh_hash64(key) & m->mask;
   for (uint64_t probe = 0; probe <= m->mask; probe++, s = (s + 1) & m->mask) {
     slot *sl = &m->slots[s];
@@ -283,7 +234,7 @@ int lmm_mesh_bits(lmm_mesh *m, int i, int j, int k, uint64_t *words,
 }
 
 void lmm_mesh_get_stats(const lmm_mesh *m, lmm_mesh_stats *st) {
-  st->points_total = (int64_t)m->n[0] * m->n[1] * m->n[2];
+  st->points_total = lmm_grid_points(&m->grid);
   st->points_computed = m->computed;
   st->points_uncached = m->uncached;
   st->bits = m->bits;

@@ -7,20 +7,21 @@
  * A value is the visibility of light i from point x through the surfaces
  * that cast soft shadows: 0 or 1 in opaque scenes (stored as bits), the
  * product of the crossed `transmit` colours with semitransparent surfaces
- * (stored as RGB floats), and, in the refract-both scheme, formula 6:
- * V(i, x) (no surface at all on the straight segment) plus the refracted
- * paths' transmittance deposited at x (lmm_caustic.h). */
+ * (stored as RGB floats), and, in the refract-both scheme, formula 6's
+ * direct term V(i, x): 1 if no surface at all is on the straight segment.
+ * The refracted paths' part of formula 6 (lmm_caustic.h) is added by the
+ * method (lmm_method.c), which composes the two on the same grid. */
 #ifndef LMM_MESH_H
 #define LMM_MESH_H
 
 #include <stdint.h>
 
+#include "lmm_grid.h"
 #include "sh_error.h"
 #include "sh_rt.h"
 #include "sh_scene.h"
 
 typedef struct lmm_mesh lmm_mesh;
-typedef struct lmm_caustics lmm_caustics;
 
 typedef struct lmm_mesh_stats {
   int64_t points_total;    /* grid points over the scene's bounds */
@@ -36,25 +37,13 @@ sh_status lmm_mesh_create(const sh_scene *scene, const sh_rt *rt, double h,
                           int capacity_log2, lmm_mesh **out, sh_error *err);
 void lmm_mesh_free(lmm_mesh *mesh);
 
-/* Switches to the refract-both scheme: the direct term becomes "no surface
- * at all on the segment", and with `add_paths` the refracted paths of
- * `caustics` are added to it (formula 6); without, the values hold the
- * direct term only (the refined variant reads the paths itself). Call
- * before the first lmm_mesh_values; `caustics` must outlive the mesh. */
-void lmm_mesh_set_caustics(lmm_mesh *mesh, const lmm_caustics *caustics,
-                           int add_paths);
+/* Switches to the refract-both scheme's direct term: a point sees a light
+ * only if no surface at all is on the segment (formula 6). Call before the
+ * first lmm_mesh_values. */
+void lmm_mesh_set_direct_only(lmm_mesh *mesh);
 
-/* The grid: its first point, and its number of points along each axis. */
-void lmm_mesh_grid(const lmm_mesh *mesh, sh_vec3 *origin, int n[3]);
-
-double lmm_mesh_step(const lmm_mesh *mesh);
-/* The grid point (i, j, k) in world space. */
-sh_vec3 lmm_mesh_point(const lmm_mesh *mesh, int i, int j, int k);
-/* The grid cell containing p: the index of its lowest corner (may lie
- * outside the grid). */
-void lmm_mesh_cell(const lmm_mesh *mesh, sh_vec3 p, int ijk[3]);
-/* 1 if (i, j, k) is a point of the grid. */
-int lmm_mesh_contains(const lmm_mesh *mesh, int i, int j, int k);
+/* The mesh's grid, valid while the mesh is. */
+const lmm_grid *lmm_mesh_grid(const lmm_mesh *mesh);
 
 /* Writes the visibility of every light from point (i, j, k), which must be
  * in the grid, into vis[0 .. nlights-1], computing it on first use. Safe

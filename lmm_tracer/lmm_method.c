@@ -53,6 +53,18 @@ static int outer_side(const sh_light *l, sh_vec3 p, sh_vec3 n) {
   return sh_dot(sh_sub(l->position, p), n) > 0;
 }
 
+/* The values of grid point g: the mesh's visibility, plus, in the
+ * refract-both scheme (not refined), the refracted paths' transmittance
+ * deposited there (formula 6). */
+static void point_values(const lmm *L, const int g[3], sh_vec3 *values,
+                         sh_rt_counters *c) {
+  lmm_mesh_values(L->mesh, g[0], g[1], g[2], values, c);
+  if (!L->caustics || L->refined) return;
+  for (int l = 0; l < L->scene->nlights; l++)
+    values[l] = sh_add(values[l],
+                       lmm_caustics_at(L->caustics, g[0], g[1], g[2], l));
+}
+
 static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
                    sh_vec3 *vis, sh_rt_counters *c) {
   lmm *L = user;
@@ -62,10 +74,11 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
     return 0;
   sc->shaded++;
   int nl = scene->nlights;
-  double h = lmm_mesh_step(L->mesh), r = h * L->opt.kl;
+  const lmm_grid *grid = lmm_mesh_grid(L->mesh);
+  double h = grid->h, r = h * L->opt.kl;
   int lo[3], hi[3];
-  lmm_mesh_cell(L->mesh, sh_sub(p, sh_v3s(r)), lo);
-  lmm_mesh_cell(L->mesh, sh_add(p, sh_v3s(r)), hi);
+  lmm_grid_cell(grid, sh_sub(p, sh_v3s(r)), lo);
+  lmm_grid_cell(grid, sh_add(p, sh_v3s(r)), hi);
   for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s(0.0);
   sh_vec3 origin = sh_rt_offset(p, n);
   /* Steps 1 and 2: the grid points in the sphere, on the front side. */
@@ -73,8 +86,8 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
   for (int k = lo[2]; k <= hi[2] + 1; k++)
     for (int j = lo[1]; j <= hi[1] + 1; j++)
       for (int i = lo[0]; i <= hi[0] + 1; i++) {
-        if (!lmm_mesh_contains(L->mesh, i, j, k) || nc == sc->max_cand) continue;
-        sh_vec3 x = lmm_mesh_point(L->mesh, i, j, k), dx = sh_sub(x, p);
+        if (!lmm_grid_contains(grid, i, j, k) || nc == sc->max_cand) continue;
+        sh_vec3 x = lmm_grid_point(grid, i, j, k), dx = sh_sub(x, p);
         if (sh_dot(dx, dx) > r * r || sh_dot(n, dx) <= 0) continue;
         sh_vec3 to = sh_sub(x, origin);
         double dist = sh_length(to);
@@ -120,7 +133,7 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
     if (sh_is_black(vxp)) continue;
     m++;
     int *g = &sc->cand[3 * q];
-    lmm_mesh_values(L->mesh, g[0], g[1], g[2], sc->values, c);
+    point_values(L, g, sc->values, c);
     if (L->refined) {
       /* V(i, x) xi(i, P) + alpha xi(P_j, P), light by light. */
       for (int l = 0; l < nl; l++) {
@@ -164,20 +177,20 @@ static int volume(void *user, int thread, sh_vec3 x, int light, sh_vec3 *vis,
   scratch *sc = &L->scratch[thread];
   const sh_light *l = &L->scene->lights[light];
   if (!l->soft_shadows || L->hard) return 0;
+  const lmm_grid *grid = lmm_mesh_grid(L->mesh);
   int ijk[3];
-  lmm_mesh_cell(L->mesh, x, ijk);
-  sh_vec3 base = lmm_mesh_point(L->mesh, ijk[0], ijk[1], ijk[2]);
-  sh_vec3 f = sh_scale(sh_sub(x, base), 1.0 / lmm_mesh_step(L->mesh));
+  lmm_grid_cell(grid, x, ijk);
+  sh_vec3 base = lmm_grid_point(grid, ijk[0], ijk[1], ijk[2]);
+  sh_vec3 f = sh_scale(sh_sub(x, base), 1.0 / grid->h);
   sh_vec3 sum = sh_v3s(0.0);
   for (int corner = 0; corner < 8; corner++) {
     int di = corner & 1, dj = (corner >> 1) & 1, dk = (corner >> 2) & 1;
-    if (!lmm_mesh_contains(L->mesh, ijk[0] + di, ijk[1] + dj, ijk[2] + dk))
-      return 0;
+    int g[3] = {ijk[0] + di, ijk[1] + dj, ijk[2] + dk};
+    if (!lmm_grid_contains(grid, g[0], g[1], g[2])) return 0;
     double w = (di ? f.x : 1 - f.x) * (dj ? f.y : 1 - f.y) *
                (dk ? f.z : 1 - f.z);
     if (w == 0) continue;
-    lmm_mesh_values(L->mesh, ijk[0] + di, ijk[1] + dj, ijk[2] + dk,
-                    sc->values, c);
+    point_values(L, g, sc->values, c);
     sum = sh_madd(sum, sc->values[light], w);
   }
   sc->volume++;
@@ -222,14 +235,14 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
   }
   if (opt->scheme == SH_SCHEME_REFRACT_BOTH && L->semi) {
     double t0 = sh_seconds();
-    st = lmm_caustics_build(scene, rt, L->mesh, opt->caustic_rays,
+    st = lmm_caustics_build(scene, rt, lmm_mesh_grid(L->mesh), opt->caustic_rays,
                             &L->caustics, err);
     if (st != SH_OK) {
       lmm_free(L);
       return st;
     }
     L->refined = opt->refined;
-    lmm_mesh_set_caustics(L->mesh, L->caustics, !L->refined);
+    lmm_mesh_set_direct_only(L->mesh);
     L->build_seconds = sh_seconds() - t0;
   }
   int nl = scene->nlights > 0 ? scene->nlights : 1;

@@ -244,20 +244,23 @@ static void semitransparent(void) {
   fprintf(stderr, "focus expected between %.3f and %.3f below the centre "
                   "(rays at heights 0.7 and 0)\n", marginal, paraxial);
   SH_CHECK(marginal < paraxial);
-  /* The light mesh's values along the axis below the sphere. */
+  /* The light mesh's values along the axis below the sphere: formula 6,
+   * the direct term plus the refracted paths, composed as the method does. */
   sh_vec3 vis[1];
   double best = 0, best_depth = 0;
   lmm_mesh *mesh = NULL;
   SH_CHECK(lmm_mesh_create(s, rt, lo.h, 0, &mesh, NULL) == SH_OK);
   lmm_caustics *caustics = NULL;
-  SH_CHECK(lmm_caustics_build(s, rt, mesh, lo.caustic_rays, &caustics, NULL) ==
+  const lmm_grid *grid = lmm_mesh_grid(mesh);
+  SH_CHECK(lmm_caustics_build(s, rt, grid, lo.caustic_rays, &caustics, NULL) ==
            SH_OK);
-  lmm_mesh_set_caustics(mesh, caustics, 1);
+  lmm_mesh_set_direct_only(mesh);
   int ijk[3];
   for (double depth = 1.05; depth < 2.45; depth += lo.h) {
-    lmm_mesh_cell(mesh, sh_v3(0.001, 2.5 - depth, 0.001), ijk);
+    lmm_grid_cell(grid, sh_v3(0.001, 2.5 - depth, 0.001), ijk);
     lmm_mesh_values(mesh, ijk[0], ijk[1], ijk[2], vis, NULL);
-    sh_vec3 x = lmm_mesh_point(mesh, ijk[0], ijk[1], ijk[2]);
+    vis[0] = sh_add(vis[0], lmm_caustics_at(caustics, ijk[0], ijk[1], ijk[2], 0));
+    sh_vec3 x = lmm_grid_point(grid, ijk[0], ijk[1], ijk[2]);
     if (vis[0].x > best) {
       best = vis[0].x;
       best_depth = 2.5 - x.y;
