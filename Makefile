@@ -1,6 +1,7 @@
 # The two commands of the README, and a few more for developers.
 #   make run       install what is missing, build, render the default scene
 #   make test      install what is missing, build with -Werror, run the tests
+#   make addon     build only the Blender add-on, $(BUILD)/shafts_blender.zip
 #   make test-asan the test suite under AddressSanitizer + UBSan
 #   make validate REPORT=DIR       cross-renderer report, quick (minutes)
 #   make validate-full REPORT=DIR  the same, thorough (docs/validation.md)
@@ -11,7 +12,7 @@ OUT ?= out
 REPORT ?= $(BUILD)/validation-report
 VALIDATE_ARGS ?=
 
-.PHONY: all bootstrap build run test test-asan validate validate-full clean
+.PHONY: all bootstrap build addon run test test-asan validate validate-full clean
 
 all: build
 
@@ -23,6 +24,9 @@ $(BUILD)/CMakeCache.txt:
 
 build: bootstrap $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
+
+addon: bootstrap $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS) --target addon
 
 run: build
 	@tools/run_default.sh $(BUILD) $(SCENE) $(OUT)

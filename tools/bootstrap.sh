@@ -8,7 +8,7 @@
 set -eu
 
 build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
-  libosmesa6-dev libopenimageio-dev openimageio-tools libassimp-dev python3"
+  libosmesa6-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
 peer_pkgs="povray blender xvfb xauth"
 
 want="$build_pkgs $peer_pkgs"

@@ -1,0 +1,161 @@
+"""The add-on's settings, stored in the .blend file.
+
+Render settings of each engine live on the scene (``scene.shafts_sweep``,
+``scene.shafts_tracer``); the light meshes method's soft-shadow controls on
+each light (``light.shafts``) and material (``material.shafts``), where the
+converter reads them into the scene's ``soft_shadows``,
+``casts_soft_shadows`` and ``receives_soft_shadows`` keys
+(docs/scene-format.md). The engines turn the render settings into the
+arguments of shafts.py (``sweep_options``, ``tracer_arguments``), so a value
+reaches the library in one place only.
+"""
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+
+
+class ShaftsSweepSettings(bpy.types.PropertyGroup):
+    """gl_shafts' options (gl_shafts/gs_render.h: gs_options); 0 means the
+    built-in default for the light's kind where the header says so."""
+    planes: IntProperty(
+        name="Planes", default=0, min=0, max=100000,
+        description="Virtual planes swept per light; 0: by the light's kind "
+                    "(4 for point and spot lights, 8 for directional ones)")
+    lattice: IntProperty(
+        name="Lattice", default=20, min=2, max=4096,
+        description="Lattice points per plane side on which the scattering term is evaluated")
+    shadow_map_res: IntProperty(
+        name="Shadow Map", default=0, min=0, max=16384, subtype='PIXEL',
+        description="Shadow-map size in texels; 0: by the light's kind "
+                    "(1024 for point and spot lights, 2048 for directional ones)")
+    light_map_res: IntProperty(
+        name="Light Map", default=0, min=0, max=16384, subtype='PIXEL',
+        description="Light maps (gobos, windows) resampled to this size; 0: their own size")
+    sub_angle_deg: FloatProperty(
+        name="Sub-Angle", default=4.0, min=0.01, max=30.0,
+        description="Point and spot lights: one sample per this angle (degrees) that a "
+                    "plane's part of a ray subtends at the light")
+    sub_texels: FloatProperty(
+        name="Sub-Texels", default=2.0, min=0.01, max=1000.0,
+        description="Lights with a map: one sample per this many texels of the map "
+                    "that a plane's part of a ray crosses")
+    xi: EnumProperty(
+        name="Scattering Term",
+        items=(('EXACT', "Exact", "Evaluate the scattering term per fragment"),
+               ('LATTICE', "Lattice", "Interpolate it from the lattice (the paper's method)")),
+        default='EXACT')
+    jitter: BoolProperty(
+        name="Jitter", default=False,
+        description="Jitter the planes' sample depths per pixel (noise instead of banding)")
+
+
+class ShaftsTracerSettings(bpy.types.PropertyGroup):
+    """lmm_tracer's options (lmm_tracer/main.c, docs/lmm.md)."""
+    mode: EnumProperty(
+        name="Mode",
+        items=(('REFERENCE', "Reference", "The converged reference renderer (ground truth)"),
+               ('WHITTED', "Whitted", "Whitted ray tracing with single scattering"),
+               ('LMM', "Light Meshes", "Soft shadows by the light meshes method")),
+        default='REFERENCE')
+    scheme: EnumProperty(
+        name="Scheme",
+        items=(('DEFAULT', "Default", "The mode's default (refract-trace)"),
+               ('STRAIGHT', "Straight", "No refraction"),
+               ('REFRACT_TRACE', "Refract-Trace", "Refraction followed by tracing"),
+               ('REFRACT_BOTH', "Refract-Both", "Refraction followed for light meshes too "
+                                                "(light meshes mode only)")),
+        default='DEFAULT')
+    refined: BoolProperty(
+        name="Refined", default=False,
+        description="Light meshes, refract-both: the refined variant")
+    mesh_step: FloatProperty(
+        name="Mesh Step", default=0.0, min=0.0, subtype='DISTANCE',
+        description="Light meshes: mesh step H; 0: 1/100 of the shapes' diagonal")
+    radius: FloatProperty(
+        name="Radius Factor", default=2.0, min=0.01, max=100.0,
+        description="Light meshes: interpolation radius r = H times this factor")
+    volume: EnumProperty(
+        name="Volume Shadows",
+        items=(('MESH', "Mesh", "Interpolate volumetric shadows from the light mesh"),
+               ('EXACT', "Exact", "Trace volumetric shadows")),
+        default='MESH')
+    spp: IntProperty(
+        name="Samples", default=16, min=1, max=1000000,
+        description="In-scattering samples per ray segment and light")
+    max_depth: IntProperty(
+        name="Max Depth", default=5, min=0, max=64,
+        description="Reflection and refraction depth")
+    seed: IntProperty(name="Seed", default=0, min=0, description="Random seed")
+    threads: IntProperty(
+        name="Threads", default=0, min=0, max=1024,
+        description="Worker threads; 0: one per CPU")
+    viewport_spp: IntProperty(
+        name="Viewport Samples", default=4, min=1, max=1000000,
+        description="Viewport: the most samples progressive refinement goes up to")
+
+
+class ShaftsLightSettings(bpy.types.PropertyGroup):
+    soft_shadows: BoolProperty(
+        name="Soft Shadows", default=True,
+        description="Light meshes mode: this light's shadows are softened")
+
+
+class ShaftsMaterialSettings(bpy.types.PropertyGroup):
+    casts_soft_shadows: BoolProperty(
+        name="Casts Soft Shadows", default=True,
+        description="Light meshes mode: the shadow this surface casts is softened")
+    receives_soft_shadows: BoolProperty(
+        name="Receives Soft Shadows", default=True,
+        description="Light meshes mode: shadows falling on this surface are softened")
+
+
+def sweep_options(settings):
+    """The gs_options fields (a dict for shafts.SweepRenderer) of a scene's
+    ShaftsSweepSettings."""
+    return {
+        "planes": settings.planes,
+        "lattice_u": settings.lattice,
+        "lattice_v": settings.lattice,
+        "light_map_res": settings.light_map_res,
+        "shadow_map_res": settings.shadow_map_res,
+        "xi": settings.xi.lower(),
+        "jitter": int(settings.jitter),
+        "sub_angle_deg": settings.sub_angle_deg,
+        "sub_texels": settings.sub_texels,
+    }
+
+
+def tracer_arguments(settings, spp=None):
+    """(function name in shafts.py, keyword arguments) for a scene's
+    ShaftsTracerSettings; spp overrides the samples (viewport refinement)."""
+    spp = settings.spp if spp is None else spp
+    common = {"spp": spp, "threads": settings.threads, "seed": settings.seed,
+              "max_depth": settings.max_depth}
+    if settings.mode == 'REFERENCE':
+        return "render_reference", common
+    args = dict(common, mode=settings.mode.lower(), refined=settings.refined,
+                volume=settings.volume.lower())
+    if settings.scheme != 'DEFAULT':
+        args["scheme"] = settings.scheme.lower().replace("_", "-")
+    if settings.mode == 'LMM':
+        if settings.mesh_step > 0:
+            args["mesh_step"] = settings.mesh_step
+        args["radius"] = settings.radius
+    return "render_lmm", args
+
+
+classes = (ShaftsSweepSettings, ShaftsTracerSettings, ShaftsLightSettings,
+           ShaftsMaterialSettings)
+
+
+def register():
+    bpy.types.Scene.shafts_sweep = PointerProperty(type=ShaftsSweepSettings)
+    bpy.types.Scene.shafts_tracer = PointerProperty(type=ShaftsTracerSettings)
+    bpy.types.Light.shafts = PointerProperty(type=ShaftsLightSettings)
+    bpy.types.Material.shafts = PointerProperty(type=ShaftsMaterialSettings)
+
+
+def unregister():
+    del bpy.types.Material.shafts
+    del bpy.types.Light.shafts
+    del bpy.types.Scene.shafts_tracer
+    del bpy.types.Scene.shafts_sweep
