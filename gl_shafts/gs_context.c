@@ -1,61 +1,125 @@
 #include "gs_context.h"
 
-#include <GL/osmesa.h>
+#include <dlfcn.h>
+#include <stdio.h>
 #include <stdlib.h>
-
-#include "gs_gl_load.h"
+#include <string.h>
 
 struct gs__context {
-  OSMesaContext osmesa;
-  unsigned char pixel[4]; /* the 1x1 default framebuffer */
-  char renderer[128], version[128];
+  const gs__context_backend *backend;
+  void *impl;
+  gs__gl_api gl;
+  char renderer[128], vendor[128], version[128];
 };
 
-static gs__gl_proc get_proc(const char *name) {
-  return (gs__gl_proc)OSMesaGetProcAddress(name);
+void *gs__context_dlopen(const char *const *names, char *why, size_t why_size) {
+  const char *reason = "no library named";
+  for (int i = 0; names[i]; i++) {
+    void *h = dlopen(names[i], RTLD_NOW | RTLD_LOCAL);
+    if (h) return h;
+    const char *e = dlerror();
+    if (e) reason = e;
+  }
+  snprintf(why, why_size, "%s could not be loaded (%s)", names[0], reason);
+  return NULL;
 }
 
-sh_status gs__context_create(gs__context **out, sh_error *err) {
+static gs__gl_proc get_proc(void *user, const char *name) {
+  gs__context *ctx = user;
+  return ctx->backend->get_proc(ctx->impl, name);
+}
+
+/* Creates the context on one backend, leaving it current. */
+static sh_status create_on(const gs__context_backend *b, gs__context *ctx,
+                           sh_error *err) {
+  sh_status st = b->create(&ctx->impl, err);
+  if (st != SH_OK) return st;
+  ctx->backend = b;
+  st = gs__gl_load(get_proc, ctx, &ctx->gl, err);
+  if (st == SH_OK) {
+    gs__gl_current = &ctx->gl;
+    st = gs__gl_setup(ctx->renderer, sizeof ctx->renderer, ctx->vendor,
+                      sizeof ctx->vendor, ctx->version, sizeof ctx->version, err);
+  }
+  if (st != SH_OK) {
+    gs__context_release(ctx);
+    b->destroy(ctx->impl);
+    ctx->impl = NULL;
+    ctx->backend = NULL;
+  }
+  return st;
+}
+
+/* GS_BACKEND_AUTO narrowed by SHAFTS_GL_BACKEND. */
+static sh_status resolve(gs_backend asked, gs_backend *out, sh_error *err) {
+  *out = asked;
+  const char *env = getenv("SHAFTS_GL_BACKEND");
+  if (asked != GS_BACKEND_AUTO || !env || !*env || !strcmp(env, "auto"))
+    return SH_OK;
+  if (!strcmp(env, "egl")) *out = GS_BACKEND_EGL;
+  else if (!strcmp(env, "osmesa")) *out = GS_BACKEND_OSMESA;
+  else
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the environment variable SHAFTS_GL_BACKEND must be "
+                        "auto, egl or osmesa, not '%s'", env);
+  return SH_OK;
+}
+
+sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err) {
   *out = NULL;
+  gs_backend want;
+  sh_status st = resolve(asked, &want, err);
+  if (st != SH_OK) return st;
+  if (want != GS_BACKEND_AUTO && want != GS_BACKEND_EGL && want != GS_BACKEND_OSMESA)
+    return sh_error_set(err, SH_ERR_ARG, "backend must be auto, egl or osmesa (%d)",
+                        (int)want);
   gs__context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_STENCIL_BITS, 0,
-                         OSMESA_ACCUM_BITS, 0,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                         OSMESA_CONTEXT_MINOR_VERSION, 5,
-                         0};
-  ctx->osmesa = OSMesaCreateContextAttribs(attribs, NULL);
-  if (!ctx->osmesa) {
-    free(ctx);
-    return sh_error_set(err, SH_ERR_DEVICE,
-                        "OSMesa could not create an OpenGL 4.5 core context "
-                        "(gl_shafts needs Mesa's llvmpipe, Mesa 20 or newer)");
+  sh_error egl_err = {0}, osmesa_err = {0};
+  st = SH_ERR_DEVICE;
+  if (want != GS_BACKEND_OSMESA) st = create_on(&gs__context_egl, ctx, &egl_err);
+  if (st != SH_OK && st != SH_ERR_NOMEM && want != GS_BACKEND_EGL)
+    st = create_on(&gs__context_osmesa, ctx, &osmesa_err);
+  if (st == SH_OK) {
+    *out = ctx;
+    return SH_OK;
   }
-  sh_status st = gs__context_make_current(ctx, err);
-  if (st == SH_OK) st = gs__gl_load(get_proc, err);
-  if (st == SH_OK)
-    st = gs__gl_setup(ctx->renderer, sizeof ctx->renderer, ctx->version,
-                      sizeof ctx->version, err);
-  if (st != SH_OK) {
-    gs__context_free(ctx);
-    return st;
-  }
-  *out = ctx;
-  return SH_OK;
+  free(ctx);
+  if (st == SH_ERR_NOMEM) return sh_error_set(err, st, "out of memory");
+  if (want == GS_BACKEND_EGL)
+    st = sh_error_set(err, st, "the egl backend cannot give an OpenGL 4.5 core "
+                      "context: %s", egl_err.message);
+  else if (want == GS_BACKEND_OSMESA)
+    st = sh_error_set(err, st, "the osmesa backend cannot give an OpenGL 4.5 "
+                      "core context: %s", osmesa_err.message);
+  else
+    st = sh_error_set(err, st, "no backend gives an OpenGL 4.5 core context "
+                      "(gl_shafts needs Mesa 20 or newer, or a GPU driver "
+                      "with EGL); egl: %s; osmesa: %s",
+                      egl_err.message, osmesa_err.message);
+  if (err) snprintf(err->path, sizeof err->path, "backend");
+  return st;
 }
 
 sh_status gs__context_make_current(gs__context *ctx, sh_error *err) {
-  if (!OSMesaMakeCurrent(ctx->osmesa, ctx->pixel, GL_UNSIGNED_BYTE, 1, 1))
-    return sh_error_set(err, SH_ERR_DEVICE,
-                        "OSMesa could not make the GL context current");
-  return SH_OK;
+  sh_status st = ctx->backend->make_current(ctx->impl, err);
+  if (st == SH_OK) gs__gl_current = &ctx->gl;
+  return st;
 }
 
+void gs__context_release(gs__context *ctx) {
+  ctx->backend->release(ctx->impl);
+  gs__gl_current = NULL;
+}
+
+const char *gs__context_backend_name(const gs__context *ctx) {
+  return ctx->backend->name;
+}
 const char *gs__context_renderer(const gs__context *ctx) {
   return ctx->renderer;
+}
+const char *gs__context_vendor(const gs__context *ctx) {
+  return ctx->vendor;
 }
 const char *gs__context_version(const gs__context *ctx) {
   return ctx->version;
@@ -63,10 +127,6 @@ const char *gs__context_version(const gs__context *ctx) {
 
 void gs__context_free(gs__context *ctx) {
   if (!ctx) return;
-  if (ctx->osmesa) {
-    if (OSMesaGetCurrentContext() == ctx->osmesa)
-      OSMesaMakeCurrent(NULL, NULL, 0, 0, 0);
-    OSMesaDestroyContext(ctx->osmesa);
-  }
+  if (ctx->backend) ctx->backend->destroy(ctx->impl);
   free(ctx);
 }

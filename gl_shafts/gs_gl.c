@@ -3,20 +3,19 @@
 #include <stdio.h>
 #include <string.h>
 
-gs__gl_api gs__gl;
+_Thread_local const gs__gl_api *gs__gl_current;
 
-sh_status gs__gl_load(gs__gl_getproc getproc, sh_error *err) {
-  gs__gl_api api;
-  memset(&api, 0, sizeof api);
+sh_status gs__gl_load(gs__gl_getproc getproc, void *user, gs__gl_api *api,
+                      sh_error *err) {
+  memset(api, 0, sizeof *api);
 #define GS__GL_LOAD(type, name)                                              \
-  api.name = (type)getproc("gl" #name);                                      \
-  if (!api.name)                                                             \
+  api->name = (type)getproc(user, "gl" #name);                               \
+  if (!api->name)                                                            \
     return sh_error_set(err, SH_ERR_DEVICE,                                  \
                         "the OpenGL library has no gl" #name                 \
                         "; gl_shafts needs OpenGL 4.5");
   GS__GL_FUNCS(GS__GL_LOAD)
 #undef GS__GL_LOAD
-  gs__gl = api;
   return SH_OK;
 }
 
@@ -57,11 +56,14 @@ sh_status gs__gl_check(const char *what, sh_error *err) {
                       "OpenGL reported %s while %s", names, what);
 }
 
-sh_status gs__gl_setup(char *renderer, size_t renderer_size, char *version,
-                       size_t version_size, sh_error *err) {
+sh_status gs__gl_setup(char *renderer, size_t renderer_size, char *vendor,
+                       size_t vendor_size, char *version, size_t version_size,
+                       sh_error *err) {
   const char *r = (const char *)glGetString(GL_RENDERER);
+  const char *d = (const char *)glGetString(GL_VENDOR);
   const char *v = (const char *)glGetString(GL_VERSION);
   snprintf(renderer, renderer_size, "%s", r ? r : "unknown");
+  snprintf(vendor, vendor_size, "%s", d ? d : "unknown");
   snprintf(version, version_size, "%s", v ? v : "unknown");
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   return gs__gl_check("setting up the GL context", err);

@@ -89,6 +89,9 @@ sh_status gs_options_check(const gs_options *o, sh_error *err) {
   if (!(o->sub_texels > 0 && o->sub_texels <= 1e6))
     return sh_error_set(err, SH_ERR_ARG, "sub_texels must be in (0, 1e6], not %g",
                         o->sub_texels);
+  if (o->backend != GS_BACKEND_AUTO && o->backend != GS_BACKEND_EGL &&
+      o->backend != GS_BACKEND_OSMESA)
+    return sh_error_set(err, SH_ERR_ARG, "backend must be auto, egl or osmesa");
   return SH_OK;
 }
 
@@ -199,7 +202,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
     gs_renderer_free(r);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
-  st = gs__context_create(&r->ctx, err);
+  st = gs__context_create(opt->backend, &r->ctx, err);
   if (st == SH_OK) st = check_limits(r, err);
   gs__view_init(&r->view, scene);
   if (st == SH_OK) st = gs__geometry_build(scene, &r->view, &r->geom, err);
@@ -209,6 +212,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   for (int i = 0; i < scene->nlights && st == SH_OK; i++)
     if (scene->lights[i].has_map)
       st = upload_map(&scene->lights[i], opt->light_map_res, &r->maps[i], err);
+  if (r->ctx) gs__context_release(r->ctx);
   if (st != SH_OK) {
     gs_renderer_free(r);
     return st;
@@ -238,14 +242,13 @@ static void to_rgb(const float *rgba, int w, int h, float *rgb) {
   }
 }
 
-sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
-                           sh_error *err) {
+/* gs_renderer_draw with the context current. */
+static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err) {
   gs_stats s;
   memset(&s, 0, sizeof s);
   const sh_scene *scene = r->scene;
   const gs_options *o = &r->opt;
-  sh_status st = gs__context_make_current(r->ctx, err);
-  if (st != SH_OK) return st;
+  sh_status st = SH_OK;
   gs__frame fr = {scene, &r->view, &r->progs, &r->params, 1};
   double start = sh_seconds(), t = start;
 
@@ -310,7 +313,18 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
   s.width = r->target.width;
   s.height = r->target.height;
   snprintf(s.renderer, sizeof s.renderer, "%s", gs__context_renderer(r->ctx));
+  snprintf(s.backend, sizeof s.backend, "%s", gs__context_backend_name(r->ctx));
+  snprintf(s.vendor, sizeof s.vendor, "%s", gs__context_vendor(r->ctx));
   if (stats) *stats = s;
+  return st;
+}
+
+sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
+                           sh_error *err) {
+  sh_status st = gs__context_make_current(r->ctx, err);
+  if (st != SH_OK) return st;
+  st = draw(r, rgb, stats, err);
+  gs__context_release(r->ctx);
   return st;
 }
 
@@ -327,6 +341,7 @@ void gs_renderer_free(gs_renderer *r) {
     gs__geometry_free(&r->geom);
     gs__programs_free(&r->progs);
     gs__params_free(&r->params);
+    gs__context_release(r->ctx);
   }
   if (r->lights)
     for (int i = 0; i < r->nlights; i++) gs__light_setup_free(&r->lights[i]);

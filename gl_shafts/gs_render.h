@@ -1,6 +1,7 @@
 /* gl_shafts: the plane-sweep renderer of Dobashi, Yamamoto and Nishita
  * (2000), "Interactive Rendering Method for Displaying Shafts of Light", on
- * OpenGL 4.5 through OSMesa (llvmpipe: the CPU, no GPU needed).
+ * OpenGL 4.5 core without a window: through EGL (a GPU where there is one,
+ * else Mesa's llvmpipe on the CPU) or, as a fallback, OSMesa (llvmpipe).
  *
  * The image is the radiance of docs/scene-format.md: surfaces shaded as the
  * reference renderer shades them (Lambert and Phong with shadow-map
@@ -18,10 +19,17 @@
  * (bilinear comparison: edges are a texel soft).
  *
  * Library calls never exit or abort: they return an sh_status and fill an
- * sh_error (GL errors, shader compile errors and OSMesa failures are
- * SH_ERR_DEVICE). A renderer uses one OSMesa context, current on the
- * calling thread during each call; use a renderer from one thread at a
- * time. */
+ * sh_error (GL errors, shader compile errors and a backend that gives no
+ * OpenGL 4.5 core context are SH_ERR_DEVICE).
+ *
+ * Threads: a renderer owns one GL context. Every gs_renderer_* call makes
+ * it current on the calling thread on entry and releases it on exit
+ * (restoring the EGL context the thread had current, if any), so a
+ * renderer may be used from any thread, one thread at a time, and the
+ * library never leaves its context current on the caller's thread. With
+ * libglvnd a thread has one current context across EGL and GLX, so a
+ * program that has its own GLX context current (Blender's main thread)
+ * drives a renderer from another thread. */
 #ifndef GS_RENDER_H
 #define GS_RENDER_H
 
@@ -32,6 +40,17 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Where the GL context comes from (gs_context.h). AUTO: EGL's device
+ * platform (a hardware device before a software one), then EGL's
+ * surfaceless platform, then OSMesa; the environment variable
+ * SHAFTS_GL_BACKEND ("egl" or "osmesa") narrows AUTO to one backend, which
+ * is how the tests run on each. */
+typedef enum gs_backend {
+  GS_BACKEND_AUTO = 0,
+  GS_BACKEND_EGL,
+  GS_BACKEND_OSMESA
+} gs_backend;
 
 /* Rendering settings. gs_options_defaults fills them from the scene's
  * render object, with the built-in defaults below for keys it lacks. */
@@ -55,6 +74,7 @@ typedef struct gs_options {
                                fragment takes one sample per this many
                                texels of the map its part of the ray
                                crosses (at most 64 samples) */
+  gs_backend backend;       /* GS_BACKEND_AUTO unless asked */
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
@@ -102,6 +122,8 @@ typedef struct gs_stats {
   long triangles;          /* surface triangles */
   int width, height;
   char renderer[128];      /* GL_RENDERER */
+  char backend[16];        /* "egl" or "osmesa": the backend used */
+  char vendor[128];        /* GL_VENDOR */
 } gs_stats;
 
 typedef struct gs_renderer gs_renderer;
@@ -118,7 +140,9 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
 sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
                            sh_error *err);
 
-/* Frees the renderer and its context; NULL is allowed. */
+/* Frees the renderer and its context; NULL is allowed. Call it on no
+ * thread other than one that could draw (the context must not be current
+ * elsewhere). */
 void gs_renderer_free(gs_renderer *r);
 
 /* Renders `scene` into `out`, which the call allocates at the camera's size
