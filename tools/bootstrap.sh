@@ -4,18 +4,23 @@
 # downloaded from outside Debian's archive.
 #   tools/bootstrap.sh          everything: build, test and validation (the
 #                               tests render with POV-Ray and Blender too)
-#   tools/bootstrap.sh --build  only what the build needs
+#   tools/bootstrap.sh --build  only what the build needs (not the GL
+#                               libraries gl_shafts loads when it renders)
 set -eu
 
+# gl_shafts builds with the Khronos headers only (libegl-dev, libgl-dev) and
+# loads its GL at run time: EGL through libglvnd with Mesa's driver (llvmpipe
+# where there is no GPU), or OSMesa as the fallback (gl_shafts/gs_context.h).
 build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
-  libosmesa6-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
+  libegl-dev libgl-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
+gl_pkgs="libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6"
 peer_pkgs="povray blender xvfb xauth"
 
-want="$build_pkgs $peer_pkgs"
+want="$build_pkgs $gl_pkgs $peer_pkgs"
 for arg in "$@"; do
   case "$arg" in
     --build) want="$build_pkgs" ;;
-    -h|--help) sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bootstrap: unknown option '$arg'" >&2; exit 2 ;;
   esac
 done
