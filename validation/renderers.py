@@ -207,8 +207,8 @@ class GlShafts(Adapter):
 
     def missing(self, ctx):
         if not _executable(ctx.tool(self.TOOL)):
-            return ("%s is not built (gl_shafts needs OSMesa: Debian's "
-                    "libosmesa6-dev)" % ctx.tool(self.TOOL))
+            return ("%s is not built (gl_shafts needs the EGL and GL "
+                    "headers: Debian's libegl-dev and libgl-dev)" % ctx.tool(self.TOOL))
         return None
 
     def version(self, ctx):
