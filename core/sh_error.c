@@ -2,7 +2,10 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "shafts.h"
 
 const char *sh_strerror(sh_status status) {
   switch (status) {
@@ -59,4 +62,16 @@ int sh_exit_code(sh_status status) {
   case SH_ERR_ARG: return 2;
   default: return 1;
   }
+}
+
+/* The accessors of shafts.h, for bindings. */
+sh_error *sh_error_new(void) { return calloc(1, sizeof(sh_error)); }
+void sh_error_free(sh_error *err) { free(err); }
+sh_status sh_error_status(const sh_error *err) { return err->status; }
+const char *sh_error_file(const sh_error *err) { return err->file; }
+int sh_error_line(const sh_error *err) { return err->line; }
+int sh_error_column(const sh_error *err) { return err->column; }
+const char *sh_error_key(const sh_error *err) { return err->path; }
+const char *sh_error_message(const sh_error *err) {
+  return err->message[0] ? err->message : sh_strerror(err->status);
 }

@@ -43,7 +43,7 @@ static const char *const phase_names[] = {"isotropic",    "henyey_greenstein",
 
 #define MAX_IMAGE_SIZE 65536
 
-static sh_status parse_camera(sh__parser *p, json_t *root) {
+sh_status sh__parse_camera(sh__parser *p, json_t *root) {
   sh__pctx *c = &p->c;
   sh_camera *cam = &p->scene->camera;
   json_t *o;
@@ -110,7 +110,7 @@ static sh_status parse_phase(sh__parser *p, json_t *medium) {
   return SH_OK;
 }
 
-static sh_status parse_medium(sh__parser *p, json_t *root) {
+sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   sh__pctx *c = &p->c;
   sh_medium *m = &p->scene->medium;
   json_t *o, *b;
@@ -294,11 +294,11 @@ static sh_status parse_root(sh__parser *p, json_t *root) {
     return sh__missing(c, "format", "\"shafts-scene\"");
   if (!json_object_get(root, "version"))
     return sh__missing(c, "version", "the number 1");
-  if ((st = parse_camera(p, root)) ||
+  if ((st = sh__parse_camera(p, root)) ||
       (st = sh__vec3(c, root, "background", 0, sh_v3s(0), sh__ge0,
                      &s->background)) ||
       (st = sh__vec3(c, root, "ambient", 0, sh_v3s(0), sh__ge0, &s->ambient)) ||
-      (st = parse_medium(p, root)) || (st = parse_materials(p, root)) ||
+      (st = sh__parse_medium(p, root)) || (st = parse_materials(p, root)) ||
       (st = sh__parse_lights(p, root)) || (st = sh__parse_shapes(p, root)) ||
       (st = parse_render(p, root)))
     return st;
@@ -308,8 +308,8 @@ static sh_status parse_root(sh__parser *p, json_t *root) {
 /* Turns jansson's report of text it could not read into an sh_error. A
  * number too large for a double (1e999) is valid JSON that breaks the
  * format's "every number is finite": an SH_ERR_SCENE at the number. */
-static sh_status syntax_error(const char *text, size_t len, const char *name,
-                              const json_error_t *je, sh_error *err) {
+sh_status sh__syntax_error(const char *text, size_t len, const char *name,
+                           const json_error_t *je, sh_error *err) {
   enum json_error_code code = json_error_code(je);
   size_t pos = je->position > 0 ? (size_t)je->position : 0;
   if (code == json_error_out_of_memory)
@@ -349,18 +349,39 @@ static sh_status syntax_error(const char *text, size_t len, const char *name,
   return err->status;
 }
 
-static sh_status parse_buffer(const char *text, size_t len, const char *name,
-                              const char *base_dir, sh_scene **out,
+/* Checks the caller's in-memory meshes: names given and distinct. */
+static sh_status check_meshes(const sh_mesh_data *meshes, int nmeshes,
                               sh_error *err) {
+  if (nmeshes < 0 || (nmeshes > 0 && !meshes))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "sh_scene_parse_ex: %d meshes and no array", nmeshes);
+  for (int i = 0; i < nmeshes; i++) {
+    if (!meshes[i].name || !meshes[i].name[0])
+      return sh_error_set(err, SH_ERR_ARG,
+                          "sh_scene_parse_ex: mesh %d has no name", i);
+    for (int j = 0; j < i; j++)
+      if (strcmp(meshes[i].name, meshes[j].name) == 0)
+        return sh_error_set(err, SH_ERR_ARG,
+                            "sh_scene_parse_ex: two meshes are named '%s'",
+                            meshes[i].name);
+  }
+  return SH_OK;
+}
+
+static sh_status parse_buffer(const char *text, size_t len, const char *name,
+                              const char *base_dir, const sh_mesh_data *meshes,
+                              int nmeshes, sh_scene **out, sh_error *err) {
   sh_error local;
   json_error_t je;
+  sh_status st;
   if (!err) err = &local;
   if (out) *out = NULL;
   if (!text || !out)
     return sh_error_set(err, SH_ERR_ARG, "sh_scene_parse: no text or output");
+  if ((st = check_meshes(meshes, nmeshes, err))) return st;
   if (!name) name = "<scene>";
   json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &je);
-  if (!root) return syntax_error(text, len, name, &je, err);
+  if (!root) return sh__syntax_error(text, len, name, &je, err);
   sh__parser p;
   memset(&p, 0, sizeof p);
   p.c.text = text;
@@ -368,14 +389,17 @@ static sh_status parse_buffer(const char *text, size_t len, const char *name,
   p.c.name = name;
   p.c.err = err;
   p.base_dir = base_dir;
+  p.meshes = meshes;
+  p.nmeshes = nmeshes;
   sh_scene *s = p.scene = calloc(1, sizeof *s);
-  if (!s || !(s->file = strdup(name))) {
-    free(s);
+  if (!s || !(s->file = strdup(name)) ||
+      (base_dir && base_dir[0] && !(s->base_dir = strdup(base_dir)))) {
+    sh_scene_free(s);
     json_decref(root);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
   s->camera.up = sh_v3(0, 1, 0);
-  sh_status st = parse_root(&p, root);
+  st = parse_root(&p, root);
   json_decref(root);
   if (st != SH_OK) {
     sh_scene_free(s);
@@ -386,9 +410,16 @@ static sh_status parse_buffer(const char *text, size_t len, const char *name,
   return SH_OK;
 }
 
+sh_status sh_scene_parse_ex(const char *text, const char *name,
+                            const char *base_dir, const sh_mesh_data *meshes,
+                            int nmeshes, sh_scene **out, sh_error *err) {
+  return parse_buffer(text, text ? strlen(text) : 0, name, base_dir, meshes,
+                      nmeshes, out, err);
+}
+
 sh_status sh_scene_parse(const char *text, const char *name,
                          const char *base_dir, sh_scene **out, sh_error *err) {
-  return parse_buffer(text, text ? strlen(text) : 0, name, base_dir, out, err);
+  return sh_scene_parse_ex(text, name, base_dir, NULL, 0, out, err);
 }
 
 sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
@@ -445,7 +476,7 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
     dir[1] = '\0';
   else
     *slash = '\0';
-  st = parse_buffer(buf, len, path, dir, out, err);
+  st = parse_buffer(buf, len, path, dir, NULL, 0, out, err);
   free(dir);
   free(buf);
   return st;

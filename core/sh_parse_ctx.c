@@ -464,3 +464,19 @@ sh_status sh__min_max(sh__pctx *c, json_t *obj, sh_vec3 *lo, sh_vec3 *hi) {
 int sh__parallel(sh_vec3 u, sh_vec3 v) {
   return sh_length(sh_cross(u, v)) <= 1e-12 * sh_length(u) * sh_length(v);
 }
+
+sh_status sh__fail_unknown(sh__pctx *c, const char *key, const char *kind,
+                           const char *name, const char *const *names,
+                           const char *what_list) {
+  char list[600], hint[200] = "";
+  size_t n = 0;
+  list[0] = '\0';
+  for (int i = 0; names[i]; i++)
+    if (n < sizeof list)
+      n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
+                            names[i]);
+  const char *near = sh__suggest(name, names);
+  if (near) snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
+  return sh__fail_at(c, key, SH_ERR_SCENE, "unknown %s '%s'; %s%s: %s", kind,
+                     name, hint, what_list, list);
+}

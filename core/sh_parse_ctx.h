@@ -88,6 +88,14 @@ int sh__edit_distance(const char *a, const char *b);
  * close enough to be a likely misspelling; NULL otherwise. */
 const char *sh__suggest(const char *word, const char *const *names);
 
+/* Reports `name`, the value of member `key`, as naming none of the
+ * NULL-terminated `names`: "unknown KIND 'name'; did you mean '...'? THE
+ * NAMES ARE: a, b", with `what_list` ("the materials are") before the list.
+ * Returns SH_ERR_SCENE. */
+sh_status sh__fail_unknown(sh__pctx *c, const char *key, const char *kind,
+                           const char *name, const char *const *names,
+                           const char *what_list);
+
 /* Checks that every member of `obj` is one of the NULL-terminated key lists
  * in the NULL-terminated array `tables`. An unknown key is an SH_ERR_SCENE at
  * the key, with a "did you mean" suggestion or the list of allowed keys;

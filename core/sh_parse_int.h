@@ -14,6 +14,7 @@
 
 #include "sh_parse_ctx.h"
 #include "sh_scene.h"
+#include "shafts.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -26,7 +27,14 @@ typedef struct sh__parser {
   sh__pctx c;
   const char *base_dir; /* NULL or "": file names are used as they are */
   sh_scene *scene;      /* being filled; freed by the caller on error */
+  const sh_mesh_data *meshes; /* the caller's in-memory meshes ("data") */
+  int nmeshes;
 } sh__parser;
+
+/* Turns jansson's report of text it could not read (json_loadb) into an
+ * sh_error located in `text`. */
+sh_status sh__syntax_error(const char *text, size_t len, const char *name,
+                           const json_error_t *je, sh_error *err);
 
 /* Joins a file name of the scene (member `key`) to the scene's directory,
  * unless it is absolute, into a new string (*out, caller frees). */
@@ -51,6 +59,23 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
  * the camera must have been read already. */
 sh_status sh__parse_lights(sh__parser *p, json_t *root);
 sh_status sh__parse_shapes(sh__parser *p, json_t *root);
+
+/* Read the "camera" (required) and "medium" (optional) members of `root`
+ * into p->scene. A scene patch (sh_scene_update) reads its members with
+ * the same functions. */
+sh_status sh__parse_camera(sh__parser *p, json_t *root);
+sh_status sh__parse_medium(sh__parser *p, json_t *root);
+
+/* Reads the transform object `t` (the current path points at it) into
+ * *xform and *inv, checking that it is invertible. */
+sh_status sh__parse_transform(sh__parser *p, json_t *t, sh_mat4 *xform,
+                              sh_mat4 *inv);
+
+/* Reads member "data" of a mesh shape: the in-memory mesh of that name
+ * among p->meshes, checked (finite positions, indices in range) and copied
+ * into *mesh. */
+sh_status sh__parse_mesh_data(sh__parser *p, json_t *o, sh_mesh *mesh,
+                              char **name_out);
 
 #ifdef __cplusplus
 }

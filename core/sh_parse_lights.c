@@ -107,6 +107,7 @@ static sh_status parse_light_map(sh__parser *p, json_t *o, sh_light *l,
   }
   if ((st = sh__load_image(p, m, "image", 0, &l->map, &l->map_file))) return st;
   l->has_map = 1;
+  l->map_up_given = *has_up;
   sh__pop(c);
   return SH_OK;
 }

@@ -9,7 +9,7 @@
 #include <string.h>
 
 static const char *const shape_keys[] = {"type", "material", "transform", NULL};
-static const char *const mesh_keys[] = {"file", NULL};
+static const char *const mesh_keys[] = {"file", "data", NULL};
 static const char *const sphere_keys[] = {"center", "radius", NULL};
 static const char *const box_keys[] = {"min", "max", NULL};
 static const char *const cylinder_keys[] = {"base", "top", "radius", "caps",
@@ -81,13 +81,12 @@ static sh_status parse_scale(sh__pctx *c, json_t *t, sh_vec3 *s) {
   return SH_OK;
 }
 
-static sh_status parse_transform(sh__parser *p, json_t *o, sh_shape *sh) {
+sh_status sh__parse_transform(sh__parser *p, json_t *t, sh_mat4 *xform,
+                              sh_mat4 *inv) {
   sh__pctx *c = &p->c;
-  json_t *t;
+  sh_mat4 m = sh_mat4_identity(), mi;
   sh_status st;
-  sh->xform = sh->inv = sh_mat4_identity();
-  if ((st = sh__object(c, o, "transform", 0, &t)) || !t) return st;
-  sh__push_key(c, "transform");
+  if (!json_is_object(t)) return sh__wrong(c, t, "an object (a transform)");
   if ((st = sh__check_keys(c, t, SH__KEYS(transform_keys), "a transform")))
     return st;
   const char *where = "transform";
@@ -101,7 +100,7 @@ static sh_status parse_transform(sh__parser *p, json_t *o, sh_shape *sh) {
                           "'matrix' cannot be combined with translate, "
                           "rotate_deg or scale");
     }
-    if ((st = parse_matrix(c, t, &sh->xform))) return st;
+    if ((st = parse_matrix(c, t, &m))) return st;
     where = "matrix";
   } else {
     sh_vec3 tr, rot, sc;
@@ -110,25 +109,35 @@ static sh_status parse_transform(sh__parser *p, json_t *o, sh_shape *sh) {
         (st = parse_scale(c, t, &sc)))
       return st;
     /* Scale, then rotate about X, Y, Z, then translate. */
-    sh_mat4 m = sh_mat4_scale(sc);
+    m = sh_mat4_scale(sc);
     m = sh_mat4_mul(sh_mat4_rotate(0, rot.x), m);
     m = sh_mat4_mul(sh_mat4_rotate(1, rot.y), m);
     m = sh_mat4_mul(sh_mat4_rotate(2, rot.z), m);
-    sh->xform = sh_mat4_mul(sh_mat4_translate(tr), m);
+    m = sh_mat4_mul(sh_mat4_translate(tr), m);
   }
-  int ok =
-      conditioning(&sh->xform) > 1e-12 && sh_mat4_inverse(sh->xform, &sh->inv);
+  int ok = conditioning(&m) > 1e-12 && sh_mat4_inverse(m, &mi);
   for (int i = 0; i < 4 && ok; i++)
-    for (int j = 0; j < 4; j++) ok = ok && isfinite(sh->inv.m[i][j]);
+    for (int j = 0; j < 4; j++) ok = ok && isfinite(mi.m[i][j]);
   if (!ok) {
     if (strcmp(where, "matrix") == 0)
       return sh__fail_at(c, "matrix", SH_ERR_SCENE,
                          "the matrix is singular (not invertible)");
-    sh__pop(c);
-    return sh__fail_at(c, "transform", SH_ERR_SCENE,
-                       "the transform is singular (not invertible)");
+    return sh__fail(c, SH_ERR_SCENE,
+                    "the transform is singular (not invertible)");
   }
-  sh__pop(c);
+  *xform = m;
+  *inv = mi;
+  return SH_OK;
+}
+
+static sh_status parse_transform(sh__parser *p, json_t *o, sh_shape *sh) {
+  json_t *t;
+  sh_status st;
+  sh->xform = sh->inv = sh_mat4_identity();
+  if ((st = sh__object(&p->c, o, "transform", 0, &t)) || !t) return st;
+  sh__push_key(&p->c, "transform");
+  if ((st = sh__parse_transform(p, t, &sh->xform, &sh->inv))) return st;
+  sh__pop(&p->c);
   return SH_OK;
 }
 
@@ -152,20 +161,9 @@ static sh_status find_material(sh__parser *p, json_t *o, int *out) {
                        name);
   const char **names = calloc((unsigned)s->nmaterials + 1u, sizeof *names);
   if (!names) return sh__fail_at(c, "material", SH_ERR_NOMEM, "out of memory");
-  char list[600], hint[200] = "";
-  size_t n = 0;
-  list[0] = '\0';
-  for (int i = 0; i < s->nmaterials; i++) {
-    names[i] = s->materials[i].name;
-    if (n < sizeof list)
-      n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
-                            names[i]);
-  }
-  const char *near = sh__suggest(name, names);
-  if (near) snprintf(hint, sizeof hint, "did you mean '%s'? ", near);
-  st = sh__fail_at(c, "material", SH_ERR_SCENE,
-                   "unknown material '%s'; %sthe materials are: %s", name, hint,
-                   list);
+  for (int i = 0; i < s->nmaterials; i++) names[i] = s->materials[i].name;
+  st = sh__fail_unknown(c, "material", "material", name, names,
+                        "the materials are");
   free(names);
   return st;
 }
@@ -174,6 +172,20 @@ static sh_status parse_mesh_file(sh__parser *p, json_t *o, sh_shape *sh) {
   const char *name;
   sh_status st;
   sh_error e;
+  int has_file = json_object_get(o, "file") != NULL;
+  int has_data = json_object_get(o, "data") != NULL;
+  if (has_file && has_data) {
+    sh__push_key(&p->c, "data");
+    sh__fail_key(&p->c, SH_ERR_SCENE,
+                 "a mesh takes either file or data, not both");
+    sh__pop(&p->c);
+    return SH_ERR_SCENE;
+  }
+  if (has_data) return sh__parse_mesh_data(p, o, &sh->mesh, &sh->data);
+  if (!has_file)
+    return sh__fail(&p->c, SH_ERR_SCENE,
+                    "missing required key 'file' or 'data' (a mesh needs a "
+                    "mesh file or the name of a mesh in memory)");
   if ((st = sh__string(&p->c, o, "file", 1, &name)) ||
       (st = sh__resolve_file(p, "file", name, &sh->file)) ||
       (st =

@@ -14,10 +14,12 @@ void sh_scene_free(sh_scene *scene) {
   free(scene->materials);
   for (int i = 0; i < scene->nshapes; i++) {
     free(scene->shapes[i].file);
+    free(scene->shapes[i].data);
     sh_mesh_free(&scene->shapes[i].mesh);
   }
   free(scene->shapes);
   free(scene->file);
+  free(scene->base_dir);
   free(scene);
 }
 

@@ -2,8 +2,10 @@
  * validated, with defaults filled in, names resolved to indices, external
  * files (meshes, images) loaded and derived light quantities computed.
  *
- * A scene is produced by sh_scene_load (sh_parse.h) and freed with
- * sh_scene_free. Renderers and exporters only read it. */
+ * A scene is produced by sh_scene_load (sh_parse.h) or sh_scene_parse_ex
+ * (shafts.h) and freed with sh_scene_free. Renderers and exporters only
+ * read it; sh_scene_update (shafts.h) changes its camera, lights, medium
+ * and transforms between frames. */
 #ifndef SH_SCENE_H
 #define SH_SCENE_H
 
@@ -62,6 +64,8 @@ typedef struct sh_light {
    * `direction` to the light's frame. For directional lights the pattern
    * fills map_origin + s map_u + t map_v. */
   int has_map;
+  int map_up_given; /* spot: 1 if the map's up was given, 0 if it comes
+                       from the camera's up */
   char *map_file; /* resolved path; owned */
   sh_image map;   /* linear RGB; owned */
   sh_vec3 map_origin, map_u, map_v;
@@ -102,7 +106,9 @@ typedef struct sh_shape {
   sh_vec3 base, top;   /* cylinder */
   int caps;            /* cylinder, default 1 */
   sh_vec3 corner, u, v; /* quad */
-  char *file;          /* mesh file or heightfield image, resolved; owned */
+  char *file;          /* mesh file or heightfield image, resolved; owned;
+                          NULL for a mesh from memory */
+  char *data;          /* mesh from memory (shafts.h): its name; owned */
   sh_mesh mesh;        /* mesh, heightfield: object-space triangles; owned */
 } sh_shape;
 
@@ -144,6 +150,8 @@ typedef struct sh_render_settings {
 
 typedef struct sh_scene {
   char *file; /* the scene file's path as given; owned */
+  char *base_dir; /* what relative file names resolve against; owned;
+                     NULL: they are used as written */
   sh_camera camera;
   sh_vec3 background, ambient;
   sh_medium medium;

@@ -92,7 +92,11 @@ static json_t *shape(const sh_scene *s, const sh_shape *sh) {
   if (!o) return NULL;
   switch (sh->type) {
   case SH_SHAPE_MESH:
-    json_object_set_new(o, "file", file_path(sh->file));
+    /* A mesh from memory keeps its name: the reader passes it again. */
+    if (sh->data)
+      json_object_set_new(o, "data", json_string(sh->data));
+    else
+      json_object_set_new(o, "file", file_path(sh->file));
     break;
   case SH_SHAPE_SPHERE:
     json_object_set_new(o, "center", vec(sh->center));
