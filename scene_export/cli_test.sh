@@ -62,8 +62,8 @@ for f in h.pov h.ini h.py h.json g.pov g.ini g_map0.exr g.py g.json g_map0.exr g
   [ -s "$out/$f" ] || { echo "FAIL: $f not written"; fail=1; }
 done
 cmp -s "$out/h.py" "$out/g.py" || { echo "FAIL: the Blender script differs between scenes"; fail=1; }
-cmp -s "$out/h.py" "$src/scene_export/blender_scene.py" \
-  || { echo "FAIL: the Blender script is not blender_scene.py"; fail=1; }
+cmp -s "$out/h.py" "$src/blender_addon/shafts_blender/convert/blender_build.py" \
+  || { echo "FAIL: the Blender script is not blender_build.py"; fail=1; }
 ls "$out" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
 "$tool" "$out/g.json.json" --to pov -o "$out/g2.pov"; check "export of the normalised scene" 0 $?
 
@@ -112,7 +112,7 @@ grep -v '^ *//' "$pov/evil.pov" | grep -q -i 'import\|touch\|pwned' \
 blend=$dir/"bl\"end \\ dir"
 mkdir "$blend"
 "$tool" "$scene" --to blender -o "$blend/ev\"il \\ '__import__'.py"; check "hostile scene to blender" 0 $?
-cmp -s "$blend/ev\"il \\ '__import__'.py" "$src/scene_export/blender_scene.py" \
+cmp -s "$blend/ev\"il \\ '__import__'.py" "$src/blender_addon/shafts_blender/convert/blender_build.py" \
   || { echo "FAIL: the hostile export's script is not the fixed script"; fail=1; }
 if command -v blender >/dev/null; then
   (cd "$dir" && blender -b -P "$blend/ev\"il \\ '__import__'.py" -- --engine cycles \

@@ -5,10 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "se_blender.h"
-#include "se_export.h"
-#include "se_json.h"
-#include "se_pov.h"
+#include "se_run.h"
 #include "sh_cli.h"
 #include "sh_parse.h"
 
@@ -47,11 +44,11 @@ static void usage(FILE *f) {
 "or not at all.\n");
 }
 
-enum { TO_NONE, TO_POV, TO_BLENDER, TO_JSON };
+enum { TO_NONE = -1 };
 
 int main(int argc, char **argv) {
   const char *scene_path = NULL, *out_path = NULL;
-  int to = TO_NONE, strict = 0;
+  int to = TO_NONE, strict = 0; /* an se_target */
   se_options opt = {SE_QUALITY_DRAFT};
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i];
@@ -62,9 +59,9 @@ int main(int argc, char **argv) {
     } else if (!strcmp(a, "--to")) {
       if (!v) goto missing;
       i++;
-      if (!strcmp(v, "pov")) to = TO_POV;
-      else if (!strcmp(v, "blender")) to = TO_BLENDER;
-      else if (!strcmp(v, "json")) to = TO_JSON;
+      if (!strcmp(v, "pov")) to = SE_TARGET_POV;
+      else if (!strcmp(v, "blender")) to = SE_TARGET_BLENDER;
+      else if (!strcmp(v, "json")) to = SE_TARGET_JSON;
       else {
         fprintf(stderr, "%s: --to expects pov, blender or json, got '%s'\n", TOOL, v);
         return 2;
@@ -117,33 +114,21 @@ int main(int argc, char **argv) {
   if (scene->nlights == 0)
     fprintf(stderr, "%s: warning: the scene has no light; its image is black but "
                     "for emission, ambient and background\n", TOOL);
-  se_output out = {0};
   se_notes notes = {0};
-  sh_status st;
-  if (to == TO_POV) st = se_pov_build(scene, &opt, out_path, &out, &notes, &err);
-  else if (to == TO_BLENDER)
-    st = se_blender_build(scene, &opt, out_path, &out, &notes, &err);
-  else st = se_json_build(scene, out_path, &out, &err);
+  sh_status st = se_export_scene(scene, (se_target)to, &opt, out_path, strict, &notes, &err);
   int code = 0;
-  if (st != SH_OK) {
-    code = sh_cli_report(TOOL, &err);
-  } else if (notes.failed) {
-    fprintf(stderr, "%s: error: out of memory\n", TOOL);
-    code = 1;
-  } else if (strict && notes.count > 0) {
-    for (int i = 0; i < notes.count; i++)
-      fprintf(stderr, "%s: error: --strict: %s\n", TOOL, notes.text[i]);
-    fprintf(stderr, "%s: error: --strict: the target cannot represent the scene "
-                    "exactly (%d approximation%s); nothing written\n",
-            TOOL, notes.count, notes.count == 1 ? "" : "s");
-    code = 2;
-  } else {
+  if (st == SH_OK) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);
-    if (se_output_write(&out, &err) != SH_OK) code = sh_cli_report(TOOL, &err);
+  } else if (strict && notes.count > 0 && st == SH_ERR_SCENE) {
+    for (int i = 0; i < notes.count; i++)
+      fprintf(stderr, "%s: error: --strict: %s\n", TOOL, notes.text[i]);
+    fprintf(stderr, "%s: error: --strict: %s\n", TOOL, err.message);
+    code = 2;
+  } else {
+    code = sh_cli_report(TOOL, &err);
   }
   se_notes_free(&notes);
-  se_output_free(&out);
   sh_scene_free(scene);
   return code;
 }

@@ -1,5 +1,13 @@
 # Blender 3.4 loader for a scene exported by scene_export (--to blender).
 #
+# One converter, two uses: scene_export embeds this file and writes it next
+# to every Blender export as NAME.py (the fixed script), and the add-on
+# imports it as a module (shafts_blender.convert.blender_build) for File >
+# Import > Shafts scene, which gets the same data from the same C writer
+# through libshafts.so (importer.py, scene_export/se_run.h). As a module it
+# only defines functions (build_into adds a scene's objects to a
+# collection); run as a script it renders.
+#
 # This file is the same for every scene: the scene lives in the JSON file
 # next to it (same name, .json), which is read with json.load and only ever
 # used as data. Render with
@@ -80,9 +88,9 @@ def matrix(value, what):
     return Matrix([m[0:4], m[4:8], m[8:12], m[12:16]])
 
 
-def new_object(name, data, scene):
+def new_object(name, data, collection):
     obj = bpy.data.objects.new(name, data)
-    scene.collection.objects.link(obj)
+    collection.objects.link(obj)
     return obj
 
 
@@ -360,13 +368,30 @@ def setup_render(scene, data, opts, medium_box):
         e.volumetric_end = far * 1.01
 
 
-def build(data, base_dir, opts):
+def check_format(data):
     if not isinstance(data, dict) or data.get("format") != "shafts-blender" or data.get("version") != 1:
         raise DataError("not a scene_export Blender data file (format shafts-blender, version 1)")
+
+
+def build(data, base_dir, opts):
+    """The script's scene: factory settings, the data's objects and the
+    render settings for opts["engine"]."""
+    check_format(data)
     for line in data.get("notes", []):
         print("scene_export note: %s" % str(line).replace("\n", " "))
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
+    medium_box = build_into(scene, scene.collection, data, base_dir, opts["engine"])
+    setup_render(scene, data, opts, medium_box)
+    return scene
+
+
+def build_into(scene, collection, data, base_dir, engine):
+    """Adds the data's world, camera (made the scene's camera), lights,
+    meshes, cards and medium to `collection`, with the materials for
+    `engine` ("cycles" or "eevee"); returns the medium's box (lo, hi) or
+    None. Raises DataError for data the exporter does not write."""
+    check_format(data)
 
     # World: the background radiance, seen by camera, mirror and refracted
     # rays but lighting nothing (diffuse and volume rays see black), never
@@ -393,7 +418,7 @@ def build(data, base_dir, opts):
     cam.angle_y = numbers([cam_item.get("fov_y")], 1, "camera.fov_y")[0]
     cam.clip_start = numbers([cam_item.get("clip_start")], 1, "camera.clip_start")[0]
     cam.clip_end = numbers([cam_item.get("clip_end")], 1, "camera.clip_end")[0]
-    cam_obj = new_object("camera", cam, scene)
+    cam_obj = new_object("camera", cam, collection)
     cam_obj.matrix_world = matrix(cam_item.get("matrix"), "camera.matrix")
     scene.camera = cam_obj
 
@@ -415,7 +440,7 @@ def build(data, base_dir, opts):
         if kind == "SPOT":
             light.spot_size = numbers([item.get("spot_size")], 1, what + ".spot_size")[0]
             light.spot_blend = numbers([item.get("spot_blend")], 1, what + ".spot_blend")[0]
-        obj = new_object("light%d" % k, light, scene)
+        obj = new_object("light%d" % k, light, collection)
         obj.matrix_world = matrix(item.get("matrix"), what + ".matrix")
 
     # Light maps: plain file names next to the data file. Blender reads a
@@ -453,7 +478,7 @@ def build(data, base_dir, opts):
             mesh.use_auto_smooth = True
             mesh.auto_smooth_angle = math.radians(50.0)
         mesh.materials.append(materials[mi])
-        new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, scene)
+        new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, collection)
 
     for k, item in enumerate(data.get("cards", [])):
         what = "cards[%d]" % k
@@ -464,7 +489,7 @@ def build(data, base_dir, opts):
             for loop in mesh.loops:
                 layer.data[loop.index].uv = (uvs[2 * loop.vertex_index], uvs[2 * loop.vertex_index + 1])
         mesh.materials.append(card_material(item, images, k))
-        obj = new_object("card%d" % k, mesh, scene)
+        obj = new_object("card%d" % k, mesh, collection)
         obj.visible_camera = False
         obj.visible_diffuse = False
         obj.visible_glossy = False
@@ -478,12 +503,10 @@ def build(data, base_dir, opts):
         lo = numbers(item.get("min"), 3, "medium.min")
         hi = numbers(item.get("max"), 3, "medium.max")
         mesh = box_mesh(lo, hi)
-        mesh.materials.append(volume_material(item, opts["engine"]))
-        new_object("medium", mesh, scene)
+        mesh.materials.append(volume_material(item, engine))
+        new_object("medium", mesh, collection)
         medium_box = (lo, hi)
-
-    setup_render(scene, data, opts, medium_box)
-    return scene
+    return medium_box
 
 
 def main():
@@ -528,4 +551,5 @@ def main():
     print("scene_export script: wrote %s" % out)
 
 
-main()
+if __name__ == "__main__":
+    main()
