@@ -65,3 +65,98 @@ def require(*names):
             importlib.import_module("shafts_blender." + name)
         except ImportError as e:
             skip("shafts_blender.%s is not available yet (%s)" % (name, e))
+
+
+def tool(*parts):
+    """A program of the build, e.g. tool("gl_shafts", "gl_shafts")."""
+    return str(BUILD.joinpath(*parts))
+
+
+def run(*argv):
+    """Runs a program of the build; raises with its output if it fails."""
+    import subprocess
+    r = subprocess.run([str(a) for a in argv], stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, universal_newlines=True)
+    if r.returncode != 0:
+        raise RuntimeError("%s exited with %d:\n%s" % (argv[0], r.returncode, r.stdout))
+    return r.stdout
+
+
+def f12(scene, path):
+    """F12 with write_still into a 32-bit float EXR of linear radiance;
+    returns the operator's result. The display transform does not touch an
+    EXR; Standard is set anyway, as a user comparing numbers would. An
+    ERROR report makes the operator raise: its message is returned then."""
+    render = scene.render
+    render.image_settings.file_format = "OPEN_EXR"
+    render.image_settings.color_depth = "32"
+    render.image_settings.color_mode = "RGB"
+    render.use_file_extension = False
+    render.dither_intensity = 0.0
+    render.use_compositing = False
+    render.use_sequencer = False
+    scene.view_settings.view_transform = "Standard"
+    render.filepath = str(path)
+    try:
+        return bpy.ops.render.render(write_still=True)
+    except RuntimeError as e:
+        return str(e)
+
+
+def compare(reference, image, diff=None):
+    """shafts_compare's figures (rel_rms over the lit pixels, max_abs...);
+    diff: the difference image it writes (kept for a failed check)."""
+    import json
+    argv = [tool("validation", "shafts_compare"), reference, image, "--json"]
+    if diff is not None:
+        argv += ["--diff", diff]
+    return json.loads(run(*argv))
+
+
+def export_files(scene, json_path, size=None):
+    """The scene as convert exports it for F12, written as files (the JSON
+    and its meshes) for the command-line renderers; the Export."""
+    from shafts_blender import convert
+    from shafts_blender.convert.files import write_files
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    r = scene.render
+    size = size or (r.resolution_x * r.resolution_percentage // 100,
+                    r.resolution_y * r.resolution_percentage // 100)
+    exported = convert.export_scene(depsgraph, size=size)
+    write_files(exported, str(json_path))
+    return exported
+
+
+class captured_stdout:
+    """Captures what Blender prints on file descriptor 1 (reports in
+    background mode) into ``.text``."""
+
+    def __enter__(self):
+        import tempfile
+        sys.stdout.flush()
+        self._file = tempfile.TemporaryFile(mode="w+")
+        self._saved = os.dup(1)
+        os.dup2(self._file.fileno(), 1)
+        return self
+
+    def __exit__(self, *exc):
+        sys.stdout.flush()
+        os.dup2(self._saved, 1)
+        os.close(self._saved)
+        self._file.seek(0)
+        self.text = self._file.read()
+        self._file.close()
+        print(self.text, end="")
+        return False
+
+
+def exr_sum(path):
+    """The sum of an image's RGB values (read through Blender)."""
+    import numpy as np
+    image = bpy.data.images.load(str(path))
+    try:
+        pixels = np.empty(len(image.pixels), dtype=np.float32)
+        image.pixels.foreach_get(pixels)
+        return float(pixels.reshape(-1, 4)[:, :3].sum())
+    finally:
+        bpy.data.images.remove(image)
