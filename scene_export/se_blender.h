@@ -1,7 +1,9 @@
 /* The Blender 3.4 exporter (Cycles and EEVEE).
  *
  * `scene_export SCENE --to blender -o DIR/NAME.py` writes DIR/NAME.py, a
- * fixed script (the same bytes for every scene, scene_export/blender_scene.py),
+ * fixed script (the same bytes for every scene,
+ * blender_addon/shafts_blender/convert/blender_build.py, which the add-on's
+ * import runs on the same JSON: one converter, se_run.h),
  * DIR/NAME.json, the scene converted to Blender's terms, and
  * DIR/NAME_map<i>.exr for each light map. The script reads the JSON file
  * next to it with json.load: no scene string is ever part of Python code,

@@ -82,6 +82,47 @@ H.check("caster mesh arrays", pos.dtype == np.float32 and pos.shape == (8, 3)
 H.near("caster transform translates up (Y)", s["shapes"][1]["transform"]["matrix"][7], 1.5)
 parses("spot in a volume box", e)
 
+# A 3D viewport's view of the same camera gives the same camera.
+cam_obj = bpy.data.objects["Camera"]
+proj = cam_obj.calc_matrix_camera(depsgraph(), x=64, y=48)
+v = export_scene(depsgraph(), view=(cam_obj.matrix_world.inverted(), proj),
+                 size=(64, 48)).scene["camera"]
+H.near("a viewport's view = the camera",
+       v["position"] + v["look_at"] + v["up"] + [v["fov_y_deg"]],
+       cam["position"] + cam["look_at"] + cam["up"] + [cam["fov_y_deg"]], 1e-6)
+
+# A Principled BSDF (Blender's default material) by the documented table.
+mat = bpy.data.materials.new("Default")
+mat.use_nodes = True
+bpy.data.objects["Caster"].data.materials[0] = mat
+pm = export_scene(depsgraph()).scene["materials"]["Default"]
+n = (1 / 0.5 ** 4 - 1) / 2  # roughness 0.5: alpha 0.25
+H.near("principled: diffuse = base colour", pm["diffuse"], [0.8] * 3)
+H.near("principled: Phong shininess from roughness", pm["shininess"], n)
+H.near("principled: specular = F0 (n + 2) / (2 pi), F0 = 0.08 * 0.5", pm["specular"],
+       [0.04 * (n + 2) / (2 * math.pi)] * 3)
+
+# A spot gobo: an Image Texture on the spot's emission colour.
+with tempfile.TemporaryDirectory() as d:
+    img = bpy.data.images.new("Dots", 8, 8)
+    img.filepath_raw = os.path.join(d, "dots.png")
+    img.file_format = "PNG"
+    img.save()
+    spot = bpy.data.objects["Spot"].data
+    spot.use_nodes = True
+    tree = spot.node_tree
+    tex = tree.nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tree.links.new(tex.outputs["Color"], tree.nodes["Emission"].inputs["Color"])
+    g = export_scene(depsgraph())
+    lm = g.scene["lights"][0].get("light_map", {})
+    H.check("a spot gobo becomes the spot's light map", lm.get("image") == img.filepath_raw
+            and lm.get("up") is not None, g.scene["lights"][0])
+    H.has_warning("the gobo's projection is warned", g.warnings, "'Spot'", "gobo")
+    parses("a spot gobo", g)
+    tree.nodes.remove(tex)
+    spot.use_nodes = False
+
 # Patches: a moved light and a moved caster; a new light rebuilds.
 bpy.data.objects["Spot"].location.x = 1.0
 bpy.data.objects["Caster"].location.y = 0.5
