@@ -21,9 +21,12 @@ Coefficients, per scene unit as Cycles 3.4 computes them
 | Volume Absorption | 0 | (1 - Color) Density | |
 | Principled Volume | Color Density | max(1 - Color, 0) max(1 - sqrt(Absorption Color), 0) Density | HG, g = Anisotropy |
 
-Add Shader sums, a Mix Shader with a constant factor weights. Several
-scattering closures of different g are approximated by one lobe of their
-sigma_s-weighted mean g; emission and linked (textured) densities are
+Add Shader sums, a Mix Shader with a constant factor weights. Cycles merges
+scattering closures of equal g and sums the phases of n distinct ones
+without their weights: the medium in-scatters n sigma_s with the
+equal-weight mean of the lobes, approximated by one lobe of their mean g,
+and its absorption is sigma_a + sigma_s - n sigma_s so that the extinction
+stays Cycles' (scene_export's mixtures come back exactly but for the phase); emission and linked (textured) densities are
 approximated with warnings. g is clamped to +-0.999 as Cycles clamps it, and
 g = 0 is the isotropic phase.
 """
@@ -100,16 +103,29 @@ def coefficients(output_node, what, warnings):
     _walk(node, v, 1.0)
     if not v.sigma_s.any() and not v.sigma_a.any():
         return None
-    total = sum(wt for wt, _ in v.lobes)
-    gs = {round(gv, 9) for wt, gv in v.lobes if wt > 0}
-    gmean = sum(wt * gv for wt, gv in v.lobes) / total if total > 0 else 0.0
-    if len(gs) > 1:
-        warnings.add("%s scatters with several anisotropies; the scene's medium has one "
-                     "Henyey-Greenstein lobe of their mean g = %.4g." % (what, gmean))
+    sigma_s, sigma_a = v.sigma_s, v.sigma_a
+    gs = sorted({round(gv, 6) for wt, gv in v.lobes if wt > 0})
+    gmean = sum(gs) / len(gs) if gs else 0.0
+    n = len(gs)
+    if n > 1:
+        # Cycles 3.4 merges closures of equal g and sums the phases of the
+        # rest without their weights (docs/scene_export.md, facts verified by
+        # renders): it in-scatters n sigma_s times the equal-weight mean of
+        # the n lobes while its extinction stays sigma_s + sigma_a.
+        sigma_a = sigma_a + sigma_s - n * sigma_s
+        sigma_s = n * sigma_s
+        if (sigma_a < -1e-12).any():
+            warnings.add("%s scatters more than its extinction allows in the scene's "
+                         "model (Cycles sums the phases of its %d lobes); its absorption "
+                         "is clamped at 0." % (what, n))
+        sigma_a = np.maximum(sigma_a, 0.0)
+        warnings.add("%s has %d scattering lobes, whose phases Cycles sums; the scene's "
+                     "medium scatters %d times their density with one Henyey-Greenstein "
+                     "lobe of their mean g = %.4g." % (what, n, n, gmean))
     gmean = min(max(gmean, -G_MAX), G_MAX)
     phase = ({"type": "isotropic"} if gmean == 0.0
              else {"type": "henyey_greenstein", "g": float(gmean)})
-    return ([float(x) for x in v.sigma_s], [float(x) for x in v.sigma_a], phase)
+    return ([float(x) for x in sigma_s], [float(x) for x in sigma_a], phase)
 
 
 def medium(coeffs, lo, hi):
