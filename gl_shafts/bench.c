@@ -44,6 +44,7 @@ static void usage(FILE *f) {
 "  --planes N, --lattice NU NV, --xi lattice|exact, --jitter, --no-jitter,\n"
 "  --shadow-map-res S, --light-map-res R, --sub-angle DEG, --sub-texels T\n"
 "                        as gl_shafts (default: its defaults)\n"
+"  --backend auto|egl|osmesa  the GL context's backend (default auto)\n"
 "  --sweep-planes LIST   comma-separated plane counts to measure in turn\n"
 "  --sweep-lattice LIST  comma-separated lattice sizes (n for n x n)\n"
 "  --sweep-xi            measure both xi lattice and xi exact\n"
@@ -56,6 +57,7 @@ typedef struct config {
   double sub_angle, sub_texels;
   sh_xi_mode xi;
   int jitter;
+  gs_backend backend;
 } config;
 
 static int parse_list(const char *s, long *out, int max) {
@@ -128,6 +130,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
   if (c->jitter >= 0) o.jitter = c->jitter;
   if (c->sub_angle > 0) o.sub_angle_deg = c->sub_angle;
   if (c->sub_texels > 0) o.sub_texels = c->sub_texels;
+  o.backend = c->backend;
   double t0 = sh_seconds();
   gs_renderer *r = NULL;
   sh_status st = gs_renderer_create(scene, &o, &r, err);
@@ -167,7 +170,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
       snprintf(bias_col, sizeof bias_col, "%.2f", 100 * e.mean_rel);
     }
     printf("| %s | %dx%d | %d | %dx%d | %s%s | %g | %g | %.1f (%.1f) | %.1f | %.1f "
-           "| %.1f / %.1f / %.1f / %.1f / %.1f | %.2f | %s | %s |\n",
+           "| %.1f / %.1f / %.1f / %.1f / %.1f | %.2f | %s | %s | %s: %s (%s) |\n",
            base, img.width, img.height,
            scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes,
            o.lattice_u, o.lattice_v, o.xi == SH_XI_EXACT ? "exact" : "lattice",
@@ -175,7 +178,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
            1000 * cpu, 1000 * (setup + first), 1000 * m->shadow_seconds,
            1000 * m->surface_seconds, 1000 * m->lattice_seconds,
            1000 * m->plane_seconds, 1000 * m->readback_seconds,
-           m->fragments / 1e6, err_col, bias_col);
+           m->fragments / 1e6, err_col, bias_col, m->backend, m->renderer, m->vendor);
     fflush(stdout);
     if (diffdir && ref && st == SH_OK) {
       char name[1024];
@@ -196,7 +199,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
 }
 
 int main(int argc, char **argv) {
-  config base = {0, 0, 0, 0, 0, 0, 0, SH_XI_DEFAULT, -1};
+  config base = {0, 0, 0, 0, 0, 0, 0, SH_XI_DEFAULT, -1, GS_BACKEND_AUTO};
   long w = 0, h = 0, frames = 5, spp = 1024;
   long sweep_p[32], sweep_l[32];
   int np = 0, nl = 0, sweep_xi = 0;
@@ -261,6 +264,11 @@ int main(int argc, char **argv) {
     } else if (!strcmp(o, "--xi")) {
       base.xi = !strcmp(v, "exact") ? SH_XI_EXACT : SH_XI_LATTICE;
       ok = !strcmp(v, "exact") || !strcmp(v, "lattice");
+    } else if (!strcmp(o, "--backend")) {
+      ok = !strcmp(v, "auto") || !strcmp(v, "egl") || !strcmp(v, "osmesa");
+      base.backend = !strcmp(v, "egl")      ? GS_BACKEND_EGL
+                     : !strcmp(v, "osmesa") ? GS_BACKEND_OSMESA
+                                            : GS_BACKEND_AUTO;
     } else if (!strcmp(o, "--sweep-planes")) {
       ok = (np = parse_list(v, sweep_p, 32)) > 0;
     } else if (!strcmp(o, "--sweep-lattice")) {
@@ -285,8 +293,8 @@ int main(int argc, char **argv) {
   printf("| scene | size | planes | lattice | xi | sub-angle ° | sub-texels | ms/frame: best "
          "(median) | CPU ms/frame | first frame ms (with context) | shadow / "
          "surface / lattice / planes / readback ms | Mfragments | error %% | "
-         "mean rel. %% |\n");
-  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+         "mean rel. %% | backend: GL_RENDERER (GL_VENDOR) |\n");
+  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int rc = 0;
   for (int k = 0; k < nscenes && rc == 0; k++) {
     sh_error err;

@@ -2,7 +2,9 @@
 # Command-line behaviour of gl_shafts: help, bad arguments and bad scenes
 # exit with status 2 and write nothing, a good render writes every output
 # and a statistics file with the time split and the counts, scene render
-# keys are defaults that options override.
+# keys are defaults that options override; --backend picks the GL context's
+# backend and --stats reports it, and a backend that cannot give a context is
+# a clear error (CTest runs this once per backend, SHAFTS_GL_BACKEND set).
 set -u
 tool=$1
 . "$(dirname "$0")/../tools/cli_test_lib.sh"
@@ -10,7 +12,7 @@ tool=$1
 "$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
 grep -q "usage: gl_shafts" "$dir/help" || { echo "FAIL: --help text"; fail=1; }
 for opt in --planes --lattice --light-map-res --shadow-map-res --xi --jitter \
-           --no-jitter --exposure --stats --quiet; do
+           --no-jitter --exposure --stats --quiet --backend; do
   grep -q -- "$opt" "$dir/help" || { echo "FAIL: --help does not mention $opt"; fail=1; }
 done
 
@@ -47,6 +49,7 @@ run_bad "--xi bogus" "$dir/good.json" -o "$dir/x.exr" --xi bogus
 run_bad "--shadow-map-res 0" "$dir/good.json" -o "$dir/x.exr" --shadow-map-res 0
 run_bad "--light-map-res 99999" "$dir/good.json" -o "$dir/x.exr" --light-map-res 99999
 run_bad "--exposure nan" "$dir/good.json" -o "$dir/x.exr" --exposure nan
+run_bad "--backend vulkan" "$dir/good.json" -o "$dir/x.exr" --backend vulkan
 run_bad "unknown option" "$dir/good.json" -o "$dir/x.exr" --bogus
 run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 "$tool" "$dir/typo.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "misspelled key" 2 $?
@@ -64,7 +67,7 @@ for f in a.exr a.png a.json; do
 done
 for key in seconds shadow_seconds surface_seconds lattice_seconds plane_seconds \
            readback_seconds setup_seconds planes fragments fragments_rasterized \
-           lattice_points shadow_maps lights_swept renderer; do
+           lattice_points shadow_maps lights_swept renderer backend vendor; do
   grep -q "\"$key\"" "$dir/a.json" || { echo "FAIL: stats key $key"; fail=1; }
 done
 # The scene's render keys are the defaults...
@@ -80,6 +83,27 @@ for kv in '"planes_per_light": 9' '"lattice_u": 5' '"lattice_v": 6' '"xi": "latt
           '"jitter": 0' '"shadow_map_res": 64' '"light_map_res": 8'; do
   grep -q "$kv" "$dir/b.json" || { echo "FAIL: option not applied: $kv"; fail=1; }
 done
+# --backend NAME is the backend used; without it (auto), the backend the
+# environment narrows auto to.
+backend=${SHAFTS_GL_BACKEND:-}
+if [ -n "$backend" ]; then
+  [ "$(field "$dir/a.json" backend)" = "$backend" ] \
+    || { echo "FAIL: SHAFTS_GL_BACKEND=$backend, stats say $(field "$dir/a.json" backend)"; fail=1; }
+  SHAFTS_GL_BACKEND= "$tool" "$dir/good.json" -o "$dir/d.exr" --backend "$backend" \
+    --stats "$dir/d.json" -q
+  check "--backend $backend" 0 $?
+  [ "$(field "$dir/d.json" backend)" = "$backend" ] || { echo "FAIL: --backend $backend not used"; fail=1; }
+fi
+# With libglvnd shown no EGL driver, --backend egl fails with a message that
+# names the key and what EGL lacked, and writes nothing.
+if [ "$backend" = egl ]; then
+  __EGL_VENDOR_LIBRARY_FILENAMES=/dev/null "$tool" "$dir/good.json" -o "$dir/y.exr" \
+    --backend egl -q 2>"$dir/err"
+  check "--backend egl without an EGL driver" 1 $?
+  grep -q "gl_shafts: .*backend: the egl backend cannot give an OpenGL 4.5 core context: .*device platform" \
+    "$dir/err" || { echo "FAIL: no-EGL message: $(cat "$dir/err")"; fail=1; }
+  [ -e "$dir/y.exr" ] && { echo "FAIL: an output was written after the backend failed"; fail=1; }
+fi
 # The same command gives the same image (pixels, not bytes: EXR headers
 # carry the time).
 "$tool" "$dir/good.json" -o "$dir/c.exr" -q

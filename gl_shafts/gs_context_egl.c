@@ -204,7 +204,7 @@ static int try_devices(egl_impl *e, char *why, size_t why_size) {
   const char *client = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!has_ext(client, "EGL_EXT_platform_device") || !egl.QueryDevicesEXT ||
       !egl.QueryDeviceStringEXT || !egl.GetPlatformDisplayEXT) {
-    note(why, why_size, "device platform: not supported");
+    note(why, why_size, "device platform: no EGL_EXT_platform_device");
     return 0;
   }
   enum { MAX_DEVICES = 16 };
@@ -234,7 +234,7 @@ static int try_surfaceless(egl_impl *e, char *why, size_t why_size) {
   const char *client = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!has_ext(client, "EGL_MESA_platform_surfaceless") ||
       !egl.GetPlatformDisplayEXT) {
-    note(why, why_size, "surfaceless platform: not supported");
+    note(why, why_size, "surfaceless platform: no EGL_MESA_platform_surfaceless");
     return 0;
   }
   EGLDisplay dpy = egl.GetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA,

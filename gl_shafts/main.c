@@ -1,5 +1,6 @@
 /* gl_shafts: renders a scene with the plane-sweep method of Dobashi et al.
- * (2000) on OSMesa. The command-line face of gs_render.h. */
+ * (2000) on OpenGL through EGL or OSMesa. The command-line face of
+ * gs_render.h. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,7 +18,8 @@ static void usage(FILE *f) {
 "usage: gl_shafts SCENE.json -o OUT.exr|OUT.png [options]\n"
 "\n"
 "Renders a scene (docs/scene-format.md) with shafts of light by the plane-sweep\n"
-"method of Dobashi, Yamamoto and Nishita (2000) on OpenGL through OSMesa.\n"
+"method of Dobashi, Yamamoto and Nishita (2000) on OpenGL 4.5, through EGL (a\n"
+"GPU if there is one, else llvmpipe on the CPU) or OSMesa.\n"
 "Options override the scene's render keys; docs/gl_shafts.md has the details.\n"
 "\n"
 "options:\n"
@@ -41,8 +43,13 @@ static void usage(FILE *f) {
 "  --sub-texels T         lights with a map (a spot's gobo, a window): one sample\n"
 "                         per T map texels a plane's part of a ray crosses\n"
 "                         (default %g)\n"
+"  --backend auto|egl|osmesa\n"
+"                         where the GL context comes from (default auto: EGL's\n"
+"                         devices, a GPU first, then EGL surfaceless, then OSMesa;\n"
+"                         the environment variable SHAFTS_GL_BACKEND narrows auto)\n"
 "  --exposure E           PNG exposure in stops (default: render.exposure, else 0)\n"
-"  --stats FILE.json      write the time (split by stage) and counts as JSON\n"
+"  --stats FILE.json      write the time (split by stage), the counts, the backend\n"
+"                         and GL's renderer and vendor strings as JSON\n"
 "  -q, --quiet            no messages but errors\n"
 "  -h, --help             show this help\n"
 "\n"
@@ -63,6 +70,7 @@ typedef struct args {
   long planes, lattice_u, lattice_v, light_map_res, shadow_map_res;
   sh_xi_mode xi;
   int jitter; /* -1: not given */
+  gs_backend backend;
   double exposure, sub_angle, sub_texels;
   int has_exposure, quiet;
 } args;
@@ -114,6 +122,15 @@ static int parse_args(int argc, char **argv, args *a) {
         fprintf(stderr, "%s: --xi expects lattice or exact, got '%s'\n", TOOL, v);
         return 2;
       }
+    } else if (!strcmp(o, "--backend")) {
+      if (!strcmp(v, "auto")) a->backend = GS_BACKEND_AUTO;
+      else if (!strcmp(v, "egl")) a->backend = GS_BACKEND_EGL;
+      else if (!strcmp(v, "osmesa")) a->backend = GS_BACKEND_OSMESA;
+      else {
+        fprintf(stderr, "%s: --backend expects auto, egl or osmesa, got '%s'\n",
+                TOOL, v);
+        return 2;
+      }
     } else if (!strcmp(o, "--sub-angle")) {
       ok = sh_cli_double(TOOL, o, v, &a->sub_angle);
       if (ok && !(a->sub_angle > 0 && a->sub_angle <= 30)) {
@@ -146,7 +163,9 @@ static void write_stats(sh_stats *s, const args *a, const gs_options *o,
                         const gs_stats *st) {
   sh_stats_str(s, "tool", TOOL);
   sh_stats_str(s, "scene", a->scene);
+  sh_stats_str(s, "backend", st->backend);
   sh_stats_str(s, "renderer", st->renderer);
+  sh_stats_str(s, "vendor", st->vendor);
   sh_stats_num(s, "width", st->width);
   sh_stats_num(s, "height", st->height);
   if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
@@ -201,6 +220,7 @@ int main(int argc, char **argv) {
   if (a.jitter >= 0) opt.jitter = a.jitter;
   if (a.sub_angle > 0) opt.sub_angle_deg = a.sub_angle;
   if (a.sub_texels > 0) opt.sub_texels = a.sub_texels;
+  opt.backend = a.backend;
   double exposure = a.has_exposure ? a.exposure : scene->render.exposure;
   if (!a.quiet)
     for (int i = 0; i < scene->nmaterials; i++) {

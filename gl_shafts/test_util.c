@@ -14,6 +14,13 @@ static void report(const char *what, const sh_error *err) {
   fprintf(stderr, "%s: %s\n", what, buf);
 }
 
+int tu_failures;
+
+void tu_check(int cond, const char *what) {
+  printf("%s: %s\n", cond ? "ok" : "FAIL", what);
+  if (!cond) tu_failures++;
+}
+
 sh_scene *tu_scene(const char *json) {
   const char *src = getenv("SHAFTS_SOURCE_DIR");
   char dir[1024];

@@ -8,6 +8,10 @@
 #include "sh_image.h"
 #include "sh_scene.h"
 
+/* Prints "ok: WHAT" or "FAIL: WHAT", counting failures in tu_failures. */
+extern int tu_failures;
+void tu_check(int cond, const char *what);
+
 /* Parses a scene; relative files resolve against the source tree's scenes/
  * directory (SHAFTS_SOURCE_DIR). Prints the error and returns NULL on
  * failure. */
