@@ -4,24 +4,29 @@
 # settings, timed in-process (the GL context and shader compilation counted
 # apart, in the first frame) against the converged reference renderer; then,
 # with --sweeps, how error and time move with the planes and the lattice
-# (the seed's figures 5 and 6) and with the sub-samples. Prints Markdown
+# (the seed's figures 5 and 6) and with the sub-samples. With --backends,
+# instead: the defaults once per GL backend (EGL, OSMesa), alternating
+# scene by scene so that both see the same machine load. Prints Markdown
 # tables; docs/gl_shafts.md quotes them.
 #
 #   gl_shafts/bench.sh [--build DIR] [--frames N] [--ref-spp N] [--sweeps]
+#                      [--backend auto|egl|osmesa] [--backends]
 #
 # References are rendered once (about a minute each at 512 samples) and
 # kept in DIR/gl_shafts_refs, named after the scene file's contents.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
-build=$root/build frames=10 spp=512 sweeps=0
+build=$root/build frames=10 spp=512 sweeps=0 backend=auto backends=0
 while [ $# -gt 0 ]; do
   case $1 in
     --build) build=$2; shift 2 ;;
     --frames) frames=$2; shift 2 ;;
     --ref-spp) spp=$2; shift 2 ;;
     --sweeps) sweeps=1; shift ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    --backend) backend=$2; shift 2 ;;
+    --backends) backends=1; shift ;;
+    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
     *) echo "bench.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -33,10 +38,25 @@ scenes=()
 for s in teapot_spot stage_5spots mountains_sun stained_glass; do
   scenes+=("$root/scenes/$s.json")
 done
-run() { "$bench" --size 640 480 --frames "$frames" --ref-spp "$spp" --cache "$cache" "$@"; }
+run() {
+  "$bench" --size 640 480 --frames "$frames" --ref-spp "$spp" --cache "$cache" \
+    --backend "$backend" "$@"
+}
 
 echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
      "$(date -u +%Y-%m-%dT%H:%MZ)"
+if [ "$backends" = 1 ]; then
+  echo
+  echo "### Defaults, 640x480, per backend"
+  echo
+  header=1
+  for s in "${scenes[@]}"; do
+    for backend in egl osmesa; do
+      if [ $header = 1 ]; then run "$s"; header=0; else run "$s" | tail -n +3; fi
+    done
+  done
+  exit 0
+fi
 echo
 echo "### Defaults, 640x480"
 echo
