@@ -398,11 +398,18 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       cards);
   if (root && scene->medium.present) json_object_set_new(root, "medium", medium(&b));
   if (root) {
+    /* The notes as sentences (a JSON string is data, so the punctuation
+     * stays; the add-on's import shows them as its warnings); a note that
+     * is not valid UTF-8 is sanitised as for a comment. */
     json_t *nt = json_array();
     for (int i = 0; i < notes->count; i++) {
-      char line[1100];
-      se_comment_text(notes->text[i], line, sizeof line);
-      json_array_append_new(nt, json_string(line));
+      json_t *t = json_string(notes->text[i]);
+      if (!t) {
+        char line[1100];
+        se_comment_text(notes->text[i], line, sizeof line);
+        t = json_string(line);
+      }
+      json_array_append_new(nt, t);
     }
     json_object_set_new(root, "notes", nt);
   }
