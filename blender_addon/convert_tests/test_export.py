@@ -137,6 +137,20 @@ H.check("a second patch is relative to the first", p2["transforms"] == [None, No
 A.light(scene, "Extra", "POINT", 10.0, (1, 1, 1))
 H.check("a new light needs a rebuild", export_patch(depsgraph(), e) is None)
 
+# An object without triangles and a text object: patches still apply.
+scene = A.spot_in_volume_box()
+edges = bpy.data.meshes.new("Edges")
+edges.from_pydata([(0, 0, 0), (1, 0, 0)], [(0, 1)], [])
+A.add_object(scene, "Edges", edges)
+text = bpy.data.curves.new("Label", "FONT")
+text.body = "Hi"
+A.add_object(scene, "Label", text, (0, -1, 0.01))
+e = export_scene(depsgraph())
+H.check("a text object becomes triangles", "Label" in e.meshes and len(e.meshes["Label"][1]) > 0)
+H.check("no shape for an object without triangles", "Edges" not in e.shape_objects)
+bpy.data.objects["Spot"].location.z = 3.5
+H.check("a patch despite an object without triangles", export_patch(depsgraph(), e) is not None)
+
 # 2. Volume Scatter + Volume Absorption.
 A.spot_in_volume_box("scatter_absorption")
 m = export_scene(depsgraph()).scene["medium"]

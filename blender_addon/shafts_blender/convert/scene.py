@@ -73,62 +73,73 @@ class _Collector:
         self.shapes, self.shape_objects, self.shape_keys = [], [], []
         self.meshes, self.materials = {}, {}
         self.points = []  # scene points for the World volume's box
-        self.media = []   # (name, coefficients, exact, lo, hi)
-        parts_cache = {}
+        self.media = []   # (name, coefficients, lo, hi)
+        self.object_keys = {}  # object name -> its shape keys (empty: no triangles)
+        self._parts_cache = {}
+        self._with_meshes = with_meshes
         for obj, m in _instances(depsgraph):
-            if obj.type == "LIGHT":
-                d = lt.export_light(obj, m, warnings)
-                if d is not None:
-                    self.lights.append(d)
-                    self.light_keys.append((obj.name, d["type"]))
-                    self.points.append(d.get("position", [0.0, 0.0, 0.0]))
-                continue
-            if obj.type not in ms.GEOMETRY_TYPES:
-                continue
-            slots = _material_slots(obj)
-            volume = next((mat for mat in slots if mat is not None and mt.has_volume(mat)), None)
-            surface = volume is None or mt.has_surface(volume)
-            t = coords.transform(m)
-            if volume is None and not getattr(obj, "visible_camera", True):
-                warnings.add("The object '%s' is hidden from camera rays (a shadow or "
-                             "light filter); the scene has no such object, so it is left "
-                             "out." % obj.name)
-                continue
-            if abs(np.linalg.det(t[:3, :3])) < 1e-12:
-                warnings.add("The object '%s' is scaled to zero; it is left out." % obj.name)
-                continue
-            need_mesh = with_meshes or volume is not None
-            parts = None
-            if need_mesh:
-                parts = parts_cache.get(obj.name)
-                if parts is None:
-                    parts = parts_cache[obj.name] = ms.mesh_parts(obj, warnings)
-            if volume is not None and parts:
-                self._medium_object(obj, volume, parts, t)
-            if not surface:
-                continue
-            if parts is not None:
-                entries = [(slots[min(p.slot, len(slots) - 1)], p) for p in parts]
-                keys = [(obj.name, obj.name if len(entries) == 1 else
-                         "%s [%s]" % (obj.name, _material_name(mat)), _material_name(mat))
-                        for mat, _ in entries]
-            else:  # a patch: the shapes the previous export found
-                keys = self.known.get(obj.name)
-                if keys is None:
-                    self.unknown = True
-                    continue
-                entries = [(None, None)] * len(keys)
-            for (oname, data, mname), (mat, part) in zip(keys, entries):
-                if part is not None:
-                    if mname not in self.materials:
-                        self.materials[mname] = mt.export_material(mat, warnings)
-                    self.meshes[data] = (part.positions, part.indices)
-                    p = part.positions.astype(np.float64) @ t[:3, :3].T + t[:3, 3]
-                    self.points.extend([p.min(axis=0), p.max(axis=0)])
-                self.shapes.append({"type": "mesh", "data": data, "material": mname,
-                                    "transform": coords.matrix_key(t)})
-                self.shape_objects.append(obj.name)
-                self.shape_keys.append((oname, data, mname))
+            try:
+                self._instance(obj, m)
+            except Exception as e:  # a Blender datum this code did not foresee
+                warnings.add("The object '%s' could not be read (%s: %s); it is left out."
+                             % (obj.name, type(e).__name__, e))
+
+    def _instance(self, obj, m):
+        warnings, with_meshes, parts_cache = self.warnings, self._with_meshes, self._parts_cache
+        if obj.type == "LIGHT":
+            d = lt.export_light(obj, m, warnings)
+            if d is not None:
+                self.lights.append(d)
+                self.light_keys.append((obj.name, d["type"]))
+                self.points.append(d.get("position", [0.0, 0.0, 0.0]))
+            return
+        if obj.type not in ms.GEOMETRY_TYPES:
+            return
+        slots = _material_slots(obj)
+        volume = next((mat for mat in slots if mat is not None and mt.has_volume(mat)), None)
+        surface = volume is None or mt.has_surface(volume)
+        t = coords.transform(m)
+        if volume is None and not getattr(obj, "visible_camera", True):
+            warnings.add("The object '%s' is hidden from camera rays (a shadow or "
+                         "light filter); the scene has no such object, so it is left "
+                         "out." % obj.name)
+            return
+        if abs(np.linalg.det(t[:3, :3])) < 1e-12:
+            warnings.add("The object '%s' is scaled to zero; it is left out." % obj.name)
+            return
+        need_mesh = with_meshes or volume is not None
+        parts = None
+        if need_mesh:
+            parts = parts_cache.get(obj.name)
+            if parts is None:
+                parts = parts_cache[obj.name] = ms.mesh_parts(obj, warnings)
+        if volume is not None and parts:
+            self._medium_object(obj, volume, parts, t)
+        if not surface:
+            return
+        if parts is not None:
+            entries = [(slots[min(p.slot, len(slots) - 1)], p) for p in parts]
+            keys = [(obj.name, obj.name if len(entries) == 1 else
+                     "%s [%s]" % (obj.name, _material_name(mat)), _material_name(mat))
+                    for mat, _ in entries]
+            self.object_keys[obj.name] = keys
+        else:  # a patch: the shapes the previous export found
+            keys = self.known.get(obj.name)
+            if keys is None:
+                self.unknown = True
+                return
+            entries = [(None, None)] * len(keys)
+        for (oname, data, mname), (mat, part) in zip(keys, entries):
+            if part is not None:
+                if mname not in self.materials:
+                    self.materials[mname] = mt.export_material(mat, warnings)
+                self.meshes[data] = (part.positions, part.indices)
+                p = part.positions.astype(np.float64) @ t[:3, :3].T + t[:3, 3]
+                self.points.extend([p.min(axis=0), p.max(axis=0)])
+            self.shapes.append({"type": "mesh", "data": data, "material": mname,
+                                "transform": coords.matrix_key(t)})
+            self.shape_objects.append(obj.name)
+            self.shape_keys.append((oname, data, mname))
 
     def _medium_object(self, obj, mat, parts, t):
         what = "The volume of '%s' (material '%s')" % (obj.name, mat.name)
@@ -187,7 +198,7 @@ def _build(depsgraph, view, size, with_meshes, known=None):
         warnings.add("The scene has no light the format can represent; it renders black "
                      "but for emission and the background.")
     structure = {"lights": c.light_keys, "shapes": c.shape_keys, "medium": medium_key,
-                 "size": (camera["width"], camera["height"])}
+                 "objects": c.object_keys, "size": (camera["width"], camera["height"])}
     return out, c, warnings, structure
 
 
@@ -226,12 +237,8 @@ def export_patch(depsgraph, previous, *, view=None, size=None):
     patched values, so the next patch is relative to this one."""
     if _structure_edits(depsgraph, previous):
         return None
-    known = {}
-    for key in previous.structure["shapes"]:
-        known.setdefault(key[0], [])
-        if key not in known[key[0]]:
-            known[key[0]].append(key)
-    out, c, warnings, structure = _build(depsgraph, view, size, False, known)
+    out, c, warnings, structure = _build(depsgraph, view, size, False,
+                                         previous.structure["objects"])
     old = previous.structure
     if (c.unknown or structure["lights"] != old["lights"]
             or structure["shapes"] != old["shapes"]
@@ -251,6 +258,7 @@ def export_patch(depsgraph, previous, *, view=None, size=None):
     for key in ("camera", "lights", "background", "ambient", "medium"):
         if key in out:
             previous.scene[key] = out[key]
+    structure["objects"] = previous.structure["objects"]
     previous.structure = structure
     previous.warnings = list(warnings)
     previous.text = json.dumps(previous.scene)
