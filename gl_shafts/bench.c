@@ -169,13 +169,13 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
       snprintf(err_col, sizeof err_col, "%.2f", 100 * e.rel_rms);
       snprintf(bias_col, sizeof bias_col, "%.2f", 100 * e.mean_rel);
     }
-    printf("| %s | %dx%d | %d | %dx%d | %s%s | %g | %g | %.1f (%.1f) | %.1f | %.1f "
+    printf("| %s | %dx%d | %d | %dx%d | %s%s | %g | %g | %.1f (%.1f) | %.1f | %.1f | %.1f "
            "| %.1f / %.1f / %.1f / %.1f / %.1f | %.2f | %s | %s | %s: %s (%s) |\n",
            base, img.width, img.height,
            scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes,
            o.lattice_u, o.lattice_v, o.xi == SH_XI_EXACT ? "exact" : "lattice",
            o.jitter ? " +jitter" : "", o.sub_angle_deg, o.sub_texels, 1000 * best, 1000 * med,
-           1000 * cpu, 1000 * (setup + first), 1000 * m->shadow_seconds,
+           1000 * cpu, 1000 * (setup + first), 1000 * setup, 1000 * m->shadow_seconds,
            1000 * m->surface_seconds, 1000 * m->lattice_seconds,
            1000 * m->plane_seconds, 1000 * m->readback_seconds,
            m->fragments / 1e6, err_col, bias_col, m->backend, m->renderer, m->vendor);
@@ -291,10 +291,10 @@ int main(int argc, char **argv) {
     return 2;
   }
   printf("| scene | size | planes | lattice | xi | sub-angle ° | sub-texels | ms/frame: best "
-         "(median) | CPU ms/frame | first frame ms (with context) | shadow / "
+         "(median) | CPU ms/frame | first frame ms (with context) | context + upload ms | shadow / "
          "surface / lattice / planes / readback ms | Mfragments | error %% | "
          "mean rel. %% | backend: GL_RENDERER (GL_VENDOR) |\n");
-  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   int rc = 0;
   for (int k = 0; k < nscenes && rc == 0; k++) {
     sh_error err;

@@ -5,8 +5,9 @@
 # apart, in the first frame) against the converged reference renderer; then,
 # with --sweeps, how error and time move with the planes and the lattice
 # (the seed's figures 5 and 6) and with the sub-samples. With --backends,
-# instead: the defaults once per GL backend (EGL, OSMesa), alternating
-# scene by scene so that both see the same machine load. Prints Markdown
+# instead: the defaults once per GL backend (EGL, OSMesa), scene by scene,
+# each pair in turn in the other order, so that both see the same machine
+# load and neither always starts cold. Prints Markdown
 # tables; docs/gl_shafts.md quotes them.
 #
 #   gl_shafts/bench.sh [--build DIR] [--frames N] [--ref-spp N] [--sweeps]
@@ -49,11 +50,12 @@ if [ "$backends" = 1 ]; then
   echo
   echo "### Defaults, 640x480, per backend"
   echo
-  header=1
+  header=1 order="egl osmesa"
   for s in "${scenes[@]}"; do
-    for backend in egl osmesa; do
+    for backend in $order; do
       if [ $header = 1 ]; then run "$s"; header=0; else run "$s" | tail -n +3; fi
     done
+    [ "$order" = "egl osmesa" ] && order="osmesa egl" || order="egl osmesa"
   done
   exit 0
 fi
