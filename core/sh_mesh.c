@@ -3,16 +3,21 @@
  * node transforms and triangulates polygons, so the loader stays small. */
 #include "sh_mesh.h"
 
+#include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <errno.h>
+#include <math.h>
+#include <stdio.h>
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include "sh_confine.h"
 
 void sh_mesh_free(sh_mesh *mesh) {
   if (!mesh)
@@ -41,7 +46,93 @@ static sh_status sh__mesh_alloc(sh_mesh *mesh, size_t nverts, size_t ntris,
   return SH_OK;
 }
 
-sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err) {
+/* assimp's file system for one load: every file assimp opens (the mesh
+ * itself, an OBJ's material library, a glTF's buffers) must resolve inside
+ * `root`; the first name refused is kept for the error message. */
+typedef struct confined_fs {
+  struct aiFileIO io;
+  const char *root;
+  char refused[512];
+} confined_fs;
+
+static size_t fs_read(struct aiFile *f, char *buf, size_t size, size_t n) {
+  return fread(buf, size, n, (FILE *)f->UserData);
+}
+static size_t fs_write(struct aiFile *f, const char *buf, size_t size,
+                       size_t n) {
+  (void)f, (void)buf, (void)size, (void)n;
+  return 0; /* loading never writes */
+}
+static size_t fs_tell(struct aiFile *f) {
+  long t = ftell((FILE *)f->UserData);
+  return t < 0 ? 0 : (size_t)t;
+}
+static size_t fs_size(struct aiFile *f) {
+  FILE *fp = (FILE *)f->UserData;
+  long at = ftell(fp), end = 0;
+  if (fseek(fp, 0, SEEK_END) == 0) end = ftell(fp);
+  fseek(fp, at, SEEK_SET);
+  return end < 0 ? 0 : (size_t)end;
+}
+static enum aiReturn fs_seek(struct aiFile *f, size_t off,
+                             enum aiOrigin origin) {
+  int whence = origin == aiOrigin_CUR ? SEEK_CUR
+               : origin == aiOrigin_END ? SEEK_END
+                                        : SEEK_SET;
+  return fseek((FILE *)f->UserData, (long)off, whence) == 0 ? aiReturn_SUCCESS
+                                                            : aiReturn_FAILURE;
+}
+static void fs_flush(struct aiFile *f) { (void)f; }
+
+static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
+                              const char *mode) {
+  confined_fs *fs = (confined_fs *)(void *)io->UserData;
+  if (!name || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
+    return NULL;
+  int inside = sh__confined(name, fs->root, NULL);
+  if (inside == 0) {
+    if (!fs->refused[0]) snprintf(fs->refused, sizeof fs->refused, "%s", name);
+    return NULL;
+  }
+  if (inside < 0) return NULL; /* does not exist: assimp says so */
+  FILE *fp = fopen(name, "rb");
+  if (!fp) return NULL;
+  struct aiFile *f = calloc(1, sizeof *f);
+  if (!f) {
+    fclose(fp);
+    return NULL;
+  }
+  f->ReadProc = fs_read;
+  f->WriteProc = fs_write;
+  f->TellProc = fs_tell;
+  f->FileSizeProc = fs_size;
+  f->SeekProc = fs_seek;
+  f->FlushProc = fs_flush;
+  f->UserData = (aiUserData)(void *)fp;
+  return f;
+}
+
+static void fs_close(struct aiFileIO *io, struct aiFile *f) {
+  (void)io;
+  if (!f) return;
+  fclose((FILE *)f->UserData);
+  free(f);
+}
+
+/* The directory part of path ("." if it has none); caller frees. */
+static char *dir_of(const char *path) {
+  const char *slash = strrchr(path, '/');
+  if (!slash) return strdup(".");
+  size_t n = slash == path ? 1 : (size_t)(slash - path);
+  char *d = malloc(n + 1);
+  if (!d) return NULL;
+  memcpy(d, path, n);
+  d[n] = '\0';
+  return d;
+}
+
+sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
+                       sh_error *err) {
   if (!mesh)
     return sh_error_set(err, SH_ERR_ARG, "sh_mesh_load was given no mesh");
   memset(mesh, 0, sizeof *mesh);
@@ -60,10 +151,32 @@ sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err) {
     return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
                         strerror(EISDIR));
 
-  const struct aiScene *scene =
-      aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                             aiProcess_PreTransformVertices |
-                             aiProcess_SortByPType);
+  char *own_root = root ? NULL : dir_of(path);
+  if (!root && !own_root)
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  confined_fs fs;
+  memset(&fs, 0, sizeof fs);
+  fs.io.OpenProc = fs_open;
+  fs.io.CloseProc = fs_close;
+  fs.io.UserData = (aiUserData)(void *)&fs;
+  fs.root = root ? root : own_root;
+  const struct aiScene *scene = aiImportFileEx(
+      path,
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+          aiProcess_PreTransformVertices | aiProcess_SortByPType,
+      &fs.io);
+  if (fs.refused[0]) {
+    /* Refused whether or not assimp went on without the file. */
+    if (scene) aiReleaseImport(scene);
+    sh_status st = sh_error_set(
+        err, SH_ERR_MESH,
+        "the mesh '%s' names the file '%s', which lies outside the scene's "
+        "directory '%s': files a scene uses must lie in its directory tree",
+        path, fs.refused, fs.root);
+    free(own_root);
+    return st;
+  }
+  free(own_root);
   if (!scene) {
     const char *msg = aiGetErrorString();
     return sh_error_set(err, SH_ERR_MESH, "cannot load mesh '%s': %s", path,
@@ -123,6 +236,15 @@ sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err) {
       p[0] = am->mVertices[v].x;
       p[1] = am->mVertices[v].y;
       p[2] = am->mVertices[v].z;
+      if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
+        aiReleaseImport(scene);
+        sh_mesh_free(mesh);
+        return sh_error_set(err, SH_ERR_MESH,
+                            "cannot load mesh '%s': vertex %u of mesh %u is "
+                            "not a finite number (NaN, infinite or beyond "
+                            "single precision's 3.4e38)",
+                            path, v + 1, m + 1);
+      }
     }
     v0 += am->mNumVertices;
     t0 += t;

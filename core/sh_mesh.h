@@ -25,9 +25,14 @@ void sh_mesh_free(sh_mesh *mesh);
 
 /* Loads every mesh of a file that assimp reads (OBJ, PLY, glTF, ...), node
  * transforms applied, triangulated, into one mesh (caller frees with
- * sh_mesh_free). A missing file is SH_ERR_IO; an unreadable one, or one
- * with no triangles, SH_ERR_MESH. */
-sh_status sh_mesh_load(const char *path, sh_mesh *mesh, sh_error *err);
+ * sh_mesh_free). Every file the load opens (the mesh, an OBJ's material
+ * library, a glTF's buffers) must resolve inside the directory `root` (NULL:
+ * the mesh's own directory); a file outside it is refused (sh_confine.h).
+ * A missing file is SH_ERR_IO; an unreadable one, one with no triangles,
+ * one naming a file outside `root`, or one with a vertex that is not a
+ * finite float, SH_ERR_MESH (the message names the vertex). */
+sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
+                       sh_error *err);
 
 /* Builds the heightfield of a grey image (its mean of R, G, B, clamped to
  * [0, 1], as height) spanning the box [bmin, bmax]: vertex (i, j) of the image's pixel

@@ -46,7 +46,7 @@ static void test_equals_file(void) {
   snprintf(obj, sizeof obj, "%s/teapot.obj", dir);
   sh_mesh m = {0};
   sh_error err;
-  SH_CHECK(sh_mesh_load(obj, &m, &err) == SH_OK);
+  SH_CHECK(sh_mesh_load(obj, NULL, &m, &err) == SH_OK);
   if (!m.ntris) return;
   int *idx = malloc(sizeof *idx * 3 * (size_t)m.ntris);
   for (int i = 0; i < 3 * m.ntris; i++) idx[i] = (int)m.indices[i];

@@ -8,6 +8,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "sh_confine.h"
+
 sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
                            char **out) {
   const char *base = p->base_dir;
@@ -15,7 +17,7 @@ sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
   if (!name[0])
     return sh__fail_at(&p->c, key, SH_ERR_SCENE,
                        "expected a file name, found an empty string");
-  if (name[0] == '/' || bl == 0) bl = 0;
+  if (name[0] == '/') bl = 0;
   char *path = malloc(bl + strlen(name) + 2);
   if (!path) return sh__fail_at(&p->c, key, SH_ERR_NOMEM, "out of memory");
   if (bl == 0)
@@ -38,6 +40,20 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
     return sh__fail_at(&p->c, key, SH_ERR_IO,
                        "the %s '%s' (resolved to '%s') is a directory", kind,
                        name, path);
+  /* Relative names must stay in the scene's tree; an absolute name is the
+   * writer's explicit choice (the validation's derived scenes use them). */
+  char *real = NULL;
+  int inside = name[0] == '/' ? 1 : sh__confined(path, p->base_dir, &real);
+  if (inside == 0) {
+    sh_status st = sh__fail_at(
+        &p->c, key, SH_ERR_SCENE,
+        "the %s '%s' resolves to '%s', outside the scene's directory '%s': "
+        "a scene uses only files in its own directory tree",
+        kind, name, real, p->base_dir && *p->base_dir ? p->base_dir : ".");
+    free(real);
+    return st;
+  }
+  free(real);
   if (sb.st_size == 0)
     return sh__fail_at(&p->c, key, empty_status,
                        "the %s '%s' (resolved to '%s') is an empty file", kind,

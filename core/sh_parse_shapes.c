@@ -192,11 +192,11 @@ static sh_status parse_mesh_file(sh__parser *p, json_t *o, sh_shape *sh) {
            sh__check_file(p, "file", name, sh->file, "mesh file", SH_ERR_MESH)))
     return st;
   memset(&e, 0, sizeof e);
-  if ((st = sh_mesh_load(sh->file, &sh->mesh, &e))) {
-    char prefix[700];
-    snprintf(prefix, sizeof prefix, "cannot load the mesh '%s': ", sh->file);
-    return sh__fail_from(&p->c, "file", &e, prefix);
-  }
+  /* The files the mesh names stay in the scene's tree (or, for a mesh the
+   * scene names by an absolute path, in the mesh's own directory). */
+  const char *root = name[0] == '/' ? NULL : p->base_dir ? p->base_dir : "";
+  if ((st = sh_mesh_load(sh->file, root, &sh->mesh, &e)))
+    return sh__fail_from(&p->c, "file", &e, ""); /* it names the file */
   return SH_OK;
 }
 

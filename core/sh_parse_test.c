@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static char tmpdir[256];
@@ -627,7 +628,7 @@ static const bad_case bad_cases[] = {
      "cannot open the mesh file 'nope.obj' (resolved to '"},
     {HEAD "\"materials\": {\"m\": {}}, \"shapes\": [{\"type\": \"mesh\", "
           "\"material\": \"m\", \"file\": \"garbage.obj\"}]}",
-     SH_ERR_MESH, 3, 78, "shapes[0].file", "cannot load the mesh '"},
+     SH_ERR_MESH, 3, 78, "shapes[0].file", "cannot load mesh '"},
     {HEAD "\"materials\": {\"m\": {}}, \"shapes\": [{\"type\": \"mesh\", "
           "\"material\": \"m\", \"file\": \"\"}]}",
      SH_ERR_SCENE, 3, 78, "shapes[0].file",
@@ -772,6 +773,53 @@ static void test_parse_base_dir(void) {
   SH_CHECK(strstr(err.message, "/nonexistent-dir/tet.obj") != NULL);
 }
 
+/* Files named relatively must stay in the scene's directory tree, however
+ * the name is spelt: "..", "./..", "a/../..", doubled slashes and links
+ * that point out are refused with a located error (issue 11). */
+static void test_confined_names(void) {
+  char sub[300], link[320], target[300];
+  path_in_tmp(sub, sizeof sub, "sub");
+  SH_CHECK(mkdir(sub, 0700) == 0);
+  path_in_tmp(target, sizeof target, "tet.obj");
+  snprintf(link, sizeof link, "%s/link.obj", sub);
+  SH_CHECK(symlink(target, link) == 0);
+  const char *names[] = {"../tet.obj", "./../tet.obj", "x/../../tet.obj",
+                         "..//tet.obj", "link.obj"};
+  for (int i = 0; i < 5; i++) {
+    char text[512];
+    snprintf(text, sizeof text,
+             MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
+                          "[{\"type\": \"mesh\", \"material\": \"m\", "
+                          "\"file\": \"%s\"}]}",
+             names[i]);
+    sh_scene *s = NULL;
+    sh_error err;
+    sh_status st = sh_scene_parse(text, "in-memory", sub, &s, &err);
+    /* "x/../../tet.obj" names a directory x that does not exist: the OS
+     * refuses it before confinement has a say. */
+    SH_CHECK(st == (i == 2 ? SH_ERR_IO : SH_ERR_SCENE));
+    SH_CHECK(s == NULL);
+    if (i != 2) {
+      SH_CHECK(strstr(err.message, "outside the scene's directory") != NULL);
+      SH_CHECK(strcmp(err.path, "shapes[0].file") == 0 && err.line > 0);
+    }
+    sh_scene_free(s);
+    /* From the parent directory the same file is inside the tree. */
+    if (i < 4) {
+      snprintf(text, sizeof text,
+               MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
+                            "[{\"type\": \"mesh\", \"material\": \"m\", "
+                            "\"file\": \"sub/%s\"}]}",
+               names[i]);
+      st = sh_scene_parse(text, "in-memory", tmpdir, &s, &err);
+      SH_CHECK(st == (i == 2 ? SH_ERR_IO : SH_OK));
+      sh_scene_free(s);
+    }
+  }
+  unlink(link);
+  rmdir(sub);
+}
+
 /* The locator on its own: escaped keys, multi-byte characters, nesting. */
 static void test_locator(void) {
   const char *text = "{\"\\u00e9t\\u00e9\": 1, \"a\\\"b\": {\"x\": [10, [20, "
@@ -843,6 +891,7 @@ int main(void) {
   test_bad_cases();
   test_io_errors();
   test_parse_base_dir();
+  test_confined_names();
   test_locator();
   remove_tmpdir();
   SH_TEST_DONE();

@@ -10,6 +10,7 @@ back with its line and column.
 import ctypes
 import json
 import math
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -97,7 +98,7 @@ def main():
         # Relative asset paths resolve against the scene file's directory.
         for asset in (scenes / "assets").iterdir():
             (Path(tmp) / "assets").mkdir(exist_ok=True)
-            (Path(tmp) / "assets" / asset.name).symlink_to(asset)
+            shutil.copyfile(asset, Path(tmp) / "assets" / asset.name)
         subprocess.run([gl_shafts, str(scene_file), "-o", str(cli), "-q"], check=True)
         r = subprocess.run([compare, str(cli), str(mine), "--max-rel-rms", "1e-6"],
                            stdout=subprocess.PIPE, universal_newlines=True)
