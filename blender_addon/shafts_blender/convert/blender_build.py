@@ -111,6 +111,24 @@ def build_mesh(name, item, what):
     return mesh
 
 
+def set_if(owner, attr, value):
+    """Sets a property that Blender 3.4 has and a later version may have
+    dropped (the script targets 3.4; the add-on's import should still build
+    on 4.x, where it can)."""
+    if owner is not None and hasattr(owner, attr):
+        setattr(owner, attr, value)
+
+
+def set_sharp(bsdf):
+    """A sharp Glossy or Refraction BSDF: the SHARP distribution (3.x), or
+    GGX at roughness 0 where SHARP is gone (4.x)."""
+    try:
+        bsdf.distribution = "SHARP"
+    except TypeError:
+        bsdf.distribution = "GGX"
+        bsdf.inputs["Roughness"].default_value = 0.0
+
+
 def node(tree, kind, **inputs):
     n = tree.nodes.new(kind)
     for key, value in inputs.items():
@@ -165,7 +183,8 @@ def surface_material(item, index):
     the ambient term) seen by traced rays only, so that it lights nothing."""
     what = "materials[%d]" % index
     mat, tree, out = new_material("material%d %s" % (index, str(item.get("label", ""))[:40]))
-    mat.cycles.sample_as_light = False
+    set_if(mat.cycles, "sample_as_light", False)
+    set_if(mat.cycles, "emission_sampling", "NONE")
     path = tree.nodes.new("ShaderNodeLightPath")
     parts = []
     diffuse = rgb(item.get("diffuse"), what + ".diffuse")
@@ -179,7 +198,7 @@ def surface_material(item, index):
     mirror = rgb(item.get("mirror"), what + ".mirror")
     if max(mirror[:3]) > 0:
         g = node(tree, "ShaderNodeBsdfGlossy", Color=mirror, Roughness=0.0)
-        g.distribution = "SHARP"
+        set_sharp(g)
         parts.append(g.outputs[0])
     transmit = rgb(item.get("transmit"), what + ".transmit")
     ior = numbers([item.get("ior")], 1, what + ".ior")[0]
@@ -189,15 +208,15 @@ def surface_material(item, index):
             parts.append(clear.outputs[0])
         else:
             refr = node(tree, "ShaderNodeBsdfRefraction", Color=transmit, Roughness=0.0, IOR=ior)
-            refr.distribution = "SHARP"
+            set_sharp(refr)
             mix = tree.nodes.new("ShaderNodeMixShader")
             tree.links.new(path.outputs["Is Shadow Ray"], mix.inputs["Fac"])
             tree.links.new(refr.outputs[0], mix.inputs[1])
             tree.links.new(clear.outputs[0], mix.inputs[2])
             parts.append(mix.outputs[0])
-        mat.blend_method = "HASHED"
-        mat.shadow_method = "HASHED"
-        mat.use_screen_refraction = ior != 1.0
+        set_if(mat, "blend_method", "HASHED")
+        set_if(mat, "shadow_method", "HASHED")
+        set_if(mat, "use_screen_refraction", ior != 1.0)
     emission = rgb(item.get("emission"), what + ".emission")
     if max(emission[:3]) > 0:
         e = node(tree, "ShaderNodeEmission", Color=emission, Strength=1.0)
@@ -239,8 +258,8 @@ def card_material(item, images, index):
     tree.links.new(clear.outputs[0], mix.inputs[1])
     tree.links.new(filt.outputs[0], mix.inputs[2])
     tree.links.new(mix.outputs[0], out.inputs["Surface"])
-    mat.blend_method = "HASHED"
-    mat.shadow_method = "HASHED"
+    set_if(mat, "blend_method", "HASHED")
+    set_if(mat, "shadow_method", "HASHED")
     return mat
 
 
@@ -255,8 +274,8 @@ def volume_material(item, engine):
         item = item["eevee"]
         if not isinstance(item, dict):
             raise DataError("medium.eevee: expected an object")
-    mat.cycles.homogeneous_volume = True
-    mat.cycles.volume_sampling = "MULTIPLE_IMPORTANCE"
+    set_if(mat.cycles, "homogeneous_volume", True)
+    set_if(mat.cycles, "volume_sampling", "MULTIPLE_IMPORTANCE")
     parts = []
     lobes = item.get("scatter")
     if not isinstance(lobes, list):
@@ -431,8 +450,8 @@ def build_into(scene, collection, data, base_dir, engine):
         light.color = rgb(item.get("color"), what + ".color")[:3]
         light.energy = numbers([item.get("energy")], 1, what + ".energy")[0]
         light.use_shadow = True
-        light.use_contact_shadow = False
-        light.cycles.cast_shadow = True
+        set_if(light, "use_contact_shadow", False)
+        set_if(getattr(light, "cycles", None), "cast_shadow", True)
         if kind == "SUN":
             light.angle = 0.0
         else:
@@ -475,8 +494,8 @@ def build_into(scene, collection, data, base_dir, engine):
         if item.get("smooth"):
             for poly in mesh.polygons:
                 poly.use_smooth = True
-            mesh.use_auto_smooth = True
-            mesh.auto_smooth_angle = math.radians(50.0)
+            set_if(mesh, "use_auto_smooth", True)
+            set_if(mesh, "auto_smooth_angle", math.radians(50.0))
         mesh.materials.append(materials[mi])
         new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, collection)
 
