@@ -119,3 +119,15 @@ void sh_stats_free(sh_stats *s) {
   json_decref(s->obj);
   free(s);
 }
+
+int sh_exit_code(sh_status status) {
+  switch (status) {
+  case SH_OK: return 0;
+  case SH_ERR_SYNTAX:
+  case SH_ERR_SCENE:
+  case SH_ERR_IMAGE:
+  case SH_ERR_MESH:
+  case SH_ERR_ARG: return 2;
+  default: return 1;
+  }
+}

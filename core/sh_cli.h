@@ -1,5 +1,6 @@
 /* Helpers for the command-line tools: option values with clear errors,
- * reporting a library error, and the --stats JSON file. */
+ * reporting a library error, and the --stats JSON file. They print, so they
+ * live in the tools' static library (shafts_cli), not in libshafts.so. */
 #ifndef SH_CLI_H
 #define SH_CLI_H
 
@@ -29,6 +30,10 @@ int sh_cli_operand(const char *tool, const char *arg, const char **slots[],
  * returns 0, else returns 1. */
 int sh_cli_check_render_outputs(const char *tool, const char *scene,
                                 const char *const *outputs, int noutputs);
+
+/* The process exit status a tool should return for a status: 2 for bad
+ * input (syntax, scene, image, mesh, argument errors), 1 for the rest. */
+int sh_exit_code(sh_status status);
 
 /* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
  * status for it (sh_exit_code). */

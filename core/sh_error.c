@@ -52,17 +52,6 @@ void sh_error_format(const sh_error *err, char *buf, unsigned long size) {
              err->message[0] ? err->message : sh_strerror(err->status));
 }
 
-int sh_exit_code(sh_status status) {
-  switch (status) {
-  case SH_OK: return 0;
-  case SH_ERR_SYNTAX:
-  case SH_ERR_SCENE:
-  case SH_ERR_IMAGE:
-  case SH_ERR_MESH:
-  case SH_ERR_ARG: return 2;
-  default: return 1;
-  }
-}
 
 /* The accessors of shafts.h, for bindings. */
 sh_error *sh_error_new(void) { return calloc(1, sizeof(sh_error)); }

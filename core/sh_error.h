@@ -50,10 +50,6 @@ sh_status sh_error_set(sh_error *err, sh_status status, const char *fmt, ...)
  * out) into buf, which has room for size bytes. */
 void sh_error_format(const sh_error *err, char *buf, unsigned long size);
 
-/* The process exit status a tool should return for a status: 2 for bad
- * input (syntax, scene, image, mesh, argument errors), 1 for the rest. */
-int sh_exit_code(sh_status status);
-
 #ifdef __cplusplus
 }
 #endif

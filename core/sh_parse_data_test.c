@@ -34,7 +34,6 @@ static void render(const sh_scene *s, sh_image *img) {
   sh_reference_options opt = sh_reference_defaults(s);
   opt.spp = 2;
   opt.threads = 2;
-  opt.progress = 0;
   sh_error err;
   SH_CHECK(sh_render_reference(s, &opt, img, NULL, &err) == SH_OK);
 }

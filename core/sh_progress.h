@@ -1,10 +1,14 @@
-/* Progress reporting for long work: a bar with percentage and time left on
+/* The command-line tools' progress bar: percentage and time left on
  * stderr, shown only when enabled, stderr is a terminal, and the work has
- * run for over a second. Safe to call from several threads. */
+ * run for over a second. It is a progress callback of the library
+ * (sh_reference_options.progress): the library itself never prints.
+ * Part of the tools' static library (shafts_cli), not of libshafts.so. */
 #ifndef SH_PROGRESS_H
 #define SH_PROGRESS_H
 
 #include <pthread.h>
+
+#include "sh_time.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -12,24 +16,21 @@ extern "C" {
 
 typedef struct sh_progress {
   const char *label;
-  long total;
-  long done; /* updated atomically */
   double start, last_print;
   int enabled, printed;
   pthread_mutex_t lock;
 } sh_progress;
 
-/* Starts a report of `total` units. `enabled` = 0 silences it (--quiet);
- * it is also silent when stderr is not a terminal. */
-void sh_progress_init(sh_progress *p, const char *label, long total,
-                      int enabled);
-/* Adds `units` finished units and redraws at most ten times a second. */
-void sh_progress_add(sh_progress *p, long units);
-/* Ends the report (clears the bar's line). */
-void sh_progress_finish(sh_progress *p);
+/* Starts a bar labelled `label`. `enabled` = 0 silences it (--quiet); it is
+ * also silent when stderr is not a terminal. */
+void sh_progress_init(sh_progress *p, const char *label, int enabled);
 
-/* Seconds on a monotonic clock. */
-double sh_seconds(void);
+/* The callback: `user` is the sh_progress. Redraws at most ten times a
+ * second; safe to call from several threads at once. */
+void sh_progress_update(void *user, long done, long total);
+
+/* Ends the bar (clears its line). */
+void sh_progress_finish(sh_progress *p);
 
 #ifdef __cplusplus
 }

@@ -10,7 +10,7 @@
 #include "sh_inscatter.h"
 #include "sh_light.h"
 #include "sh_medium.h"
-#include "sh_progress.h"
+#include "sh_time.h"
 #include "sh_rt.h"
 
 typedef struct job {
@@ -19,8 +19,8 @@ typedef struct job {
   const sh_reference_options *opt;
   sh_camera_frame frame;
   sh_image *img;
-  sh_progress progress;
-  int next_tile; /* claimed atomically */
+  long tiles_done; /* updated atomically */
+  int next_tile;   /* claimed atomically */
   int tiles_x, tiles;
 } job;
 
@@ -155,7 +155,9 @@ static void *work(void *arg) {
         px[1] = (float)L.y;
         px[2] = (float)L.z;
       }
-    sh_progress_add(&jb->progress, 1);
+    long done = __atomic_add_fetch(&jb->tiles_done, 1, __ATOMIC_RELAXED);
+    if (jb->opt->progress)
+      jb->opt->progress(jb->opt->progress_user, done, jb->tiles);
   }
   return NULL;
 }
@@ -166,7 +168,6 @@ sh_reference_options sh_reference_defaults(const sh_scene *scene) {
   o.spp = scene->render.spp;
   o.max_depth = scene->render.max_depth;
   o.seed = scene->render.seed;
-  o.progress = 1;
   o.refract = 1;
   return o;
 }
@@ -215,8 +216,6 @@ sh_status sh_render_reference(const sh_scene *scene,
     sh_image_free(out);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
-  sh_progress_init(&jb.progress, opt->hook ? "render" : "reference", jb.tiles,
-                   opt->progress);
   int started = 0;
   for (int i = 0; i < nthreads; i++) {
     ws[i].job = &jb;
@@ -227,7 +226,6 @@ sh_status sh_render_reference(const sh_scene *scene,
   }
   work(&ws[0]);
   for (int i = 1; i < started; i++) pthread_join(ws[i].thread, NULL);
-  sh_progress_finish(&jb.progress);
   if (stats) {
     memset(stats, 0, sizeof *stats);
     for (int i = 0; i < started; i++) {

@@ -30,8 +30,17 @@ typedef struct sh_reference_options {
   int max_depth;     /* reflection/refraction recursion limit, >= 0 */
   uint64_t seed;
   int threads;       /* 0: one per online CPU */
-  int progress;      /* 1: progress bar on stderr when it is a terminal */
-  volatile int *cancel; /* optional: set to non-zero to stop early */
+  /* Optional: called from the worker threads as the work advances, with
+   * the finished and the total units (tiles of the image), at most once
+   * per unit. Calls from different threads may overlap and arrive out of
+   * order (keep the largest `done`); keep it cheap. NULL: no reports. The
+   * library never prints: the tools install a terminal bar here. */
+  void (*progress)(void *user, long done, long total);
+  void *progress_user;
+  /* Optional: when *cancel becomes non-zero the workers stop after their
+   * current tile and the call returns SH_ERR_CANCELLED with nothing
+   * allocated. Read without locks from every worker. */
+  volatile int *cancel;
   /* 1 (default): transmitted rays refract by Snell's law; 0: they go on
    * straight, as OpenGL shows semitransparent surfaces. */
   int refract;
@@ -51,8 +60,8 @@ typedef struct sh_reference_stats {
 /* The number of worker threads `threads` resolves to (0: one per CPU). */
 int sh_reference_threads(int threads);
 
-/* Options from the scene's render settings, with threads = 0, progress on,
- * refraction on. */
+/* Options from the scene's render settings, with threads = 0, no progress
+ * callback, refraction on. */
 sh_reference_options sh_reference_defaults(const sh_scene *scene);
 
 /* Renders `scene` into `out`, which the call allocates at the camera's size

@@ -8,6 +8,7 @@
 #include "sh_reference.h"
 #include "sh_rt.h"
 #include "sh_test.h"
+#include "shafts.h"
 
 static sh_scene *parse(const char *json) {
   sh_error err;
@@ -33,7 +34,6 @@ static void lambert_plane(void) {
   SH_CHECK(s != NULL);
   if (!s) return;
   sh_reference_options opt = sh_reference_defaults(s);
-  opt.progress = 0;
   sh_image img = {0};
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, NULL) == SH_OK);
   sh_camera_frame f;
@@ -140,7 +140,6 @@ static void convergence(void) {
   SH_CHECK(s != NULL);
   if (!s) return;
   sh_reference_options opt = sh_reference_defaults(s);
-  opt.progress = 0;
   opt.spp = 256;
   sh_image ref = {0}, img = {0};
   SH_CHECK(sh_render_reference(s, &opt, &ref, NULL, NULL) == SH_OK);
@@ -169,9 +168,67 @@ static void convergence(void) {
   sh_scene_free(s);
 }
 
+/* The progress callback: counts calls, keeps the largest `done`, and asks
+ * the render to stop once `stop_at` tiles are done (0: never). */
+typedef struct watch {
+  long calls, done, total, stop_at;
+  volatile int cancel;
+} watch;
+
+static void on_progress(void *user, long done, long total) {
+  watch *w = user;
+  __atomic_add_fetch(&w->calls, 1, __ATOMIC_RELAXED);
+  long seen = __atomic_load_n(&w->done, __ATOMIC_RELAXED);
+  while (done > seen && !__atomic_compare_exchange_n(&w->done, &seen, done, 0,
+                                                     __ATOMIC_RELAXED,
+                                                     __ATOMIC_RELAXED)) {
+  }
+  w->total = total;
+  if (w->stop_at && done >= w->stop_at) w->cancel = 1;
+}
+
+/* Progress is reported through the caller's callback, once per tile; a
+ * cancelled render returns SH_ERR_CANCELLED and no image. */
+static void progress_and_cancel(void) {
+  sh_scene *s = parse(MEDIUM_SCENE);
+  SH_CHECK(s != NULL);
+  if (!s) return;
+  SH_CHECK(sh_scene_update(s,
+                           "{\"camera\": {\"position\": [0, 1, 6], "
+                           "\"look_at\": [0, 1, 0], \"fov_y_deg\": 50, "
+                           "\"width\": 96, \"height\": 64}}",
+                           "patch", NULL, NULL) == SH_OK);
+  int tiles = ((s->camera.width + 15) / 16) * ((s->camera.height + 15) / 16);
+  sh_reference_options opt = sh_reference_defaults(s);
+  SH_CHECK(opt.progress == NULL && opt.cancel == NULL);
+  opt.threads = 2;
+  opt.spp = 2;
+  watch w = {0};
+  opt.progress = on_progress;
+  opt.progress_user = &w;
+  sh_image img = {0};
+  SH_CHECK(sh_render_reference(s, &opt, &img, NULL, NULL) == SH_OK);
+  SH_CHECK(w.calls == tiles && w.done == tiles && w.total == tiles);
+  sh_image_free(&img);
+  if (tiles > 2) {
+    watch c = {0};
+    c.stop_at = 1;
+    opt.progress_user = &c;
+    opt.cancel = &c.cancel;
+    sh_error err;
+    img.rgb = (float *)1;
+    SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) ==
+             SH_ERR_CANCELLED);
+    SH_CHECK(err.status == SH_ERR_CANCELLED && img.rgb == NULL);
+    SH_CHECK(c.calls < tiles);
+  }
+  sh_scene_free(s);
+}
+
 int main(void) {
   lambert_plane();
   shadow_transmittance();
   convergence();
+  progress_and_cancel();
   SH_TEST_DONE();
 }

@@ -112,8 +112,12 @@ static sh_status reference(const sh_scene *scene, const char *path, int spp,
   fprintf(stderr, "%s: rendering the reference %s (%d spp)...\n", TOOL, name, spp);
   sh_reference_options opt = sh_reference_defaults(scene);
   opt.spp = spp;
-  opt.progress = 1;
+  sh_progress bar;
+  sh_progress_init(&bar, "reference", 1);
+  opt.progress = sh_progress_update;
+  opt.progress_user = &bar;
   sh_status st = sh_render_reference(scene, &opt, ref, NULL, err);
+  sh_progress_finish(&bar);
   if (st == SH_OK) st = sh_image_write(name, ref, 0, err);
   return st;
 }

@@ -15,7 +15,7 @@
 #include "gs_sweep.h"
 #include "gs_target.h"
 #include "gs_view.h"
-#include "sh_progress.h"
+#include "sh_time.h"
 
 struct gs_renderer {
   const sh_scene *scene;

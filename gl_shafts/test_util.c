@@ -45,7 +45,6 @@ sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out) {
 sh_status tu_reference(const sh_scene *scene, int spp, sh_image *out) {
   sh_reference_options o = sh_reference_defaults(scene);
   o.spp = spp;
-  o.progress = 0;
   sh_error err;
   sh_status st = sh_render_reference(scene, &o, out, NULL, &err);
   if (st != SH_OK) report("reference", &err);

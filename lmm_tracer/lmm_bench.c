@@ -17,7 +17,7 @@
 #include "sh_camera.h"
 #include "sh_compare.h"
 #include "sh_parse.h"
-#include "sh_progress.h"
+#include "sh_time.h"
 #include "sh_reference.h"
 
 /* The seed's fig. 3 scene (tabletop, hanging cylinder, bar) with n point
@@ -71,7 +71,6 @@ typedef struct run {
 static run render(const sh_scene *s, const sh_rt *rt, int method, double a,
                   double b, sh_image *img) {
   sh_reference_options opt = sh_reference_defaults(s);
-  opt.progress = 0;
   opt.threads = sh_reference_threads(0);
   opt.rt = rt;
   opt.max_depth = 0;
@@ -252,7 +251,6 @@ static void ceiling(int size) {
   sh_image img = {0};
   for (int method = 0; method < 2; method++) {
     sh_reference_options opt = sh_reference_defaults(s);
-    opt.progress = 0;
     opt.threads = 1;
     opt.rt = rt;
     opt.max_depth = 0;
@@ -291,7 +289,6 @@ static void volume(const char *path, int quick) {
   sh_rt *rt = NULL;
   if (sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
   sh_reference_options opt = sh_reference_defaults(s);
-  opt.progress = 0;
   opt.threads = sh_reference_threads(0);
   opt.rt = rt;
   sh_image ref = {0};

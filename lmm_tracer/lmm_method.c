@@ -6,7 +6,7 @@
 
 #include "lmm_caustic.h"
 #include "sh_light.h"
-#include "sh_progress.h"
+#include "sh_time.h"
 
 typedef struct scratch {
   sh_vec3 *values; /* one mesh point's values */

@@ -28,7 +28,6 @@ static sh_scene *parse(const char *json) {
 static void render(const sh_scene *s, const sh_rt *rt, double h, double kl,
                    sh_lmm_scheme scheme, sh_image *img, lmm_stats *stats) {
   sh_reference_options opt = sh_reference_defaults(s);
-  opt.progress = 0;
   opt.threads = 2;
   opt.rt = rt;
   opt.refract = scheme != SH_SCHEME_STRAIGHT;
@@ -279,7 +278,6 @@ static void semitransparent(void) {
   s->camera.width = s->camera.height = 24;
   for (int v = 0; v < 2; v++) {
     sh_reference_options opt = sh_reference_defaults(s);
-    opt.progress = 0;
     opt.rt = rt;
     lmm *method = NULL;
     lmm_options ro = {0.1, 2.0, SH_SCHEME_REFRACT_BOTH, 50000, 0, 1, v};

@@ -12,6 +12,7 @@
 #include "sh_file.h"
 #include "sh_image.h"
 #include "sh_parse.h"
+#include "sh_progress.h"
 #include "sh_reference.h"
 
 static const char *const TOOL = "lmm_tracer";
@@ -241,7 +242,6 @@ int main(int argc, char **argv) {
   if (a.max_depth >= 0) opt.max_depth = (int)a.max_depth;
   if (a.seed >= 0) opt.seed = (uint64_t)a.seed;
   opt.threads = sh_reference_threads((int)a.threads);
-  opt.progress = !a.quiet;
   opt.local = a.local;
   sh_lmm_scheme scheme = a.scheme ? (sh_lmm_scheme)a.scheme
                                   : scene->render.scheme;
@@ -285,8 +285,14 @@ int main(int argc, char **argv) {
     if (status == SH_OK) opt.hook = lmm_area_hook(area);
   }
   opt.rt = rt;
+  sh_progress bar;
+  sh_progress_init(&bar, a.mode == MODE_REFERENCE ? "reference" : "render",
+                   !a.quiet);
+  opt.progress = sh_progress_update;
+  opt.progress_user = &bar;
   if (status == SH_OK)
     status = sh_render_reference(scene, &opt, &img, &st, &err);
+  sh_progress_finish(&bar);
   for (int k = 0; status == SH_OK && k < a.noutputs; k++)
     status = sh_image_write(a.outputs[k], &img, exposure, &err);
   if (status != SH_OK)

@@ -22,7 +22,6 @@ static void render_one(const char *path) {
   s->camera.height = 48;
   sh_reference_options opt = sh_reference_defaults(s);
   opt.spp = 2;
-  opt.progress = 0;
   sh_image img = {0};
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) == SH_OK);
   size_t n = (size_t)img.width * img.height * 3, bad = 0;
