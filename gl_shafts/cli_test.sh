@@ -67,7 +67,8 @@ for f in a.exr a.png a.json; do
 done
 for key in seconds shadow_seconds surface_seconds lattice_seconds plane_seconds \
            readback_seconds setup_seconds planes fragments fragments_rasterized \
-           lattice_points shadow_maps lights_swept renderer backend vendor; do
+           lattice_points shadow_maps lights_swept renderer backend vendor \
+           programs_compiled programs_cached; do
   grep -q "\"$key\"" "$dir/a.json" || { echo "FAIL: stats key $key"; fail=1; }
 done
 # The scene's render keys are the defaults...

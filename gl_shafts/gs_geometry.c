@@ -94,6 +94,72 @@ static sh_vec3 smooth_normal(const sh_shape *s, sh_vec3 p, sh_vec3 face_n) {
   return sh_v3s(0);
 }
 
+/* The tessellation error of a shape seen from the view (1 for shapes with
+ * no curved surface). */
+static double shape_error(const sh_shape *s, const gs__view *view) {
+  if (s->type == SH_SHAPE_SPHERE) return curve_error(s, view, s->center, s->radius);
+  if (s->type == SH_SHAPE_CYLINDER)
+    return curve_error(s, view, sh_scale(sh_add(s->base, s->top), 0.5), s->radius);
+  return 1.0;
+}
+
+/* Tessellates shape s with error e and appends its world-space triangles to
+ * b, filling d (its range starting at b's end). */
+static sh_status shape_vertices(const sh_shape *s, double e, gs__shape_draw *d,
+                                vbuf *b, long *triangles, sh_error *err) {
+  sh_mesh m = {0};
+  sh_status st = sh_mesh_tessellate(s, e, &m, err);
+  if (st != SH_OK) return st;
+  d->error = e;
+  d->xform = s->xform;
+  if (s->type == SH_SHAPE_SPHERE) {
+    /* Drawn exactly (the shader intersects the true sphere): the camera
+     * pass inflates the inscribed mesh about the centre to circumscribe
+     * it; shadow maps keep it inscribed, behind the true surface. */
+    d->exact_sphere = 1;
+    d->inflate = s->radius / (s->radius - e);
+    d->center = sh_xform_point(&s->xform, s->center);
+  }
+  d->first = (int)b->n;
+  d->material = s->material;
+  d->bmin = sh_v3s(INFINITY);
+  d->bmax = sh_v3s(-INFINITY);
+  d->convex = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
+              s->type == SH_SHAPE_QUAD || (s->type == SH_SHAPE_CYLINDER && s->caps);
+  d->closed = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
+              (s->type == SH_SHAPE_CYLINDER && s->caps) ||
+              (s->type == SH_SHAPE_MESH && mesh_closed(&m));
+  /* A mirroring transform turns counter-clockwise triangles clockwise. */
+  sh_vec3 c0 = sh_xform_vector(&s->xform, sh_v3(1, 0, 0));
+  sh_vec3 c1 = sh_xform_vector(&s->xform, sh_v3(0, 1, 0));
+  sh_vec3 c2 = sh_xform_vector(&s->xform, sh_v3(0, 0, 1));
+  d->mirrored = sh_dot(sh_cross(c0, c1), c2) < 0;
+  for (int t = 0; t < m.ntris && st == SH_OK; t++) {
+    sh_vec3 o[3], w[3];
+    for (int k = 0; k < 3; k++) {
+      o[k] = vertex(&m, m.indices[3 * t + k]);
+      w[k] = sh_xform_point(&s->xform, o[k]);
+    }
+    sh_vec3 fn = sh_cross(sh_sub(w[1], w[0]), sh_sub(w[2], w[0]));
+    if (sh_length(fn) == 0) continue; /* degenerate */
+    fn = sh_normalize(fn);
+    sh_vec3 on = sh_normalize(sh_cross(sh_sub(o[1], o[0]), sh_sub(o[2], o[0])));
+    for (int k = 0; k < 3; k++) {
+      sh_vec3 n = smooth_normal(s, o[k], on);
+      n = sh_is_black(n) ? fn : sh_normalize(sh_xform_normal(&s->inv, n));
+      if (!push(b, w[k], n)) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+      d->bmin = sh_vmin(d->bmin, w[k]);
+      d->bmax = sh_vmax(d->bmax, w[k]);
+    }
+    (*triangles)++;
+  }
+  d->count = (int)b->n - d->first;
+  sh_mesh_free(&m);
+  if (st == SH_OK && b->n > (size_t)1 << 30)
+    st = sh_error_set(err, SH_ERR_ARG, "the scene has too many triangles for GL");
+  return st;
+}
+
 sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
                              gs__geometry *g, sh_error *err) {
   memset(g, 0, sizeof *g);
@@ -103,61 +169,7 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
   sh_status st = SH_OK;
   for (int i = 0; i < scene->nshapes && st == SH_OK; i++) {
     const sh_shape *s = &scene->shapes[i];
-    double e = 1.0;
-    if (s->type == SH_SHAPE_SPHERE)
-      e = curve_error(s, view, s->center, s->radius);
-    else if (s->type == SH_SHAPE_CYLINDER)
-      e = curve_error(s, view, sh_scale(sh_add(s->base, s->top), 0.5), s->radius);
-    sh_mesh m = {0};
-    st = sh_mesh_tessellate(s, e, &m, err);
-    if (st != SH_OK) break;
-    gs__shape_draw *d = &g->shape[i];
-    if (s->type == SH_SHAPE_SPHERE) {
-      /* Drawn exactly (the shader intersects the true sphere): the camera
-       * pass inflates the inscribed mesh about the centre to circumscribe
-       * it; shadow maps keep it inscribed, behind the true surface. */
-      d->exact_sphere = 1;
-      d->inflate = s->radius / (s->radius - e);
-      d->center = sh_xform_point(&s->xform, s->center);
-    }
-    d->first = (int)b.n;
-    d->material = s->material;
-    d->bmin = sh_v3s(INFINITY);
-    d->bmax = sh_v3s(-INFINITY);
-    d->convex = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
-                s->type == SH_SHAPE_QUAD ||
-                (s->type == SH_SHAPE_CYLINDER && s->caps);
-    d->closed = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_BOX ||
-                (s->type == SH_SHAPE_CYLINDER && s->caps) ||
-                (s->type == SH_SHAPE_MESH && mesh_closed(&m));
-    /* A mirroring transform turns counter-clockwise triangles clockwise. */
-    sh_vec3 c0 = sh_xform_vector(&s->xform, sh_v3(1, 0, 0));
-    sh_vec3 c1 = sh_xform_vector(&s->xform, sh_v3(0, 1, 0));
-    sh_vec3 c2 = sh_xform_vector(&s->xform, sh_v3(0, 0, 1));
-    d->mirrored = sh_dot(sh_cross(c0, c1), c2) < 0;
-    for (int t = 0; t < m.ntris && st == SH_OK; t++) {
-      sh_vec3 o[3], w[3];
-      for (int k = 0; k < 3; k++) {
-        o[k] = vertex(&m, m.indices[3 * t + k]);
-        w[k] = sh_xform_point(&s->xform, o[k]);
-      }
-      sh_vec3 fn = sh_cross(sh_sub(w[1], w[0]), sh_sub(w[2], w[0]));
-      if (sh_length(fn) == 0) continue; /* degenerate */
-      fn = sh_normalize(fn);
-      sh_vec3 on = sh_normalize(sh_cross(sh_sub(o[1], o[0]), sh_sub(o[2], o[0])));
-      for (int k = 0; k < 3; k++) {
-        sh_vec3 n = smooth_normal(s, o[k], on);
-        n = sh_is_black(n) ? fn : sh_normalize(sh_xform_normal(&s->inv, n));
-        if (!push(&b, w[k], n)) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-        d->bmin = sh_vmin(d->bmin, w[k]);
-        d->bmax = sh_vmax(d->bmax, w[k]);
-      }
-      g->triangles++;
-    }
-    d->count = (int)b.n - d->first;
-    sh_mesh_free(&m);
-    if (b.n > (size_t)1 << 30)
-      st = sh_error_set(err, SH_ERR_ARG, "the scene has too many triangles for GL");
+    st = shape_vertices(s, shape_error(s, view), &g->shape[i], &b, &g->triangles, err);
   }
   g->nshapes = scene->nshapes;
   g->nverts = (int)b.n;
@@ -177,6 +189,48 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
   }
   free(b.v);
   if (st != SH_OK) gs__geometry_free(g);
+  return st;
+}
+
+sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
+                              gs__geometry *g, int *rebuilt, sh_error *err) {
+  *rebuilt = 0;
+  if (scene->nshapes != g->nshapes)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the scene's shapes changed in number (%d, was %d): "
+                        "make a new renderer",
+                        scene->nshapes, g->nshapes);
+  vbuf b = {0};
+  sh_status st = SH_OK;
+  int whole = 0;
+  for (int i = 0; i < g->nshapes && st == SH_OK && !whole; i++) {
+    const sh_shape *s = &scene->shapes[i];
+    gs__shape_draw *d = &g->shape[i];
+    double e = shape_error(s, view);
+    if (e == d->error && !memcmp(&d->xform, &s->xform, sizeof d->xform)) continue;
+    gs__shape_draw nd = *d;
+    long tris = 0;
+    b.n = 0;
+    st = shape_vertices(s, e, &nd, &b, &tris, err);
+    if (st != SH_OK) break;
+    /* Another tessellation may have another vertex count: then the whole
+     * buffer is built again. */
+    if (nd.count != d->count) {
+      whole = 1;
+      break;
+    }
+    nd.first = d->first;
+    *d = nd;
+    glNamedBufferSubData(g->vbo, (GLintptr)((size_t)d->first * 6 * sizeof(float)),
+                         (GLsizeiptr)(b.n * 6 * sizeof(float)), b.v);
+  }
+  free(b.v);
+  if (st == SH_OK && whole) {
+    gs__geometry_free(g);
+    st = gs__geometry_build(scene, view, g, err);
+    *rebuilt = 1;
+  }
+  if (st == SH_OK) st = gs__gl_check("updating the scene's triangles", err);
   return st;
 }
 

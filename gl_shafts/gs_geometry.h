@@ -26,6 +26,8 @@ typedef struct gs__shape_draw {
                           circumscribe it */
   double inflate;
   sh_vec3 center;
+  double error;        /* the tessellation error it was built with */
+  sh_mat4 xform;       /* the transform it was built with */
 } gs__shape_draw;
 
 typedef struct gs__geometry {
@@ -40,6 +42,15 @@ typedef struct gs__geometry {
  * (never below 1e-4 of their radius). */
 sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
                              gs__geometry *g, sh_error *err);
+
+/* Brings the triangles up to date with the scene's shape transforms and
+ * the view (which sets curved shapes' tessellation): a shape that moved, or
+ * whose tessellation error changed, is tessellated again and uploaded in
+ * place; if its vertex count changed, the whole buffer is built again
+ * (*rebuilt = 1: the vertex array object is new). The scene must have the
+ * same shapes as when built (SH_ERR_ARG otherwise). */
+sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
+                              gs__geometry *g, int *rebuilt, sh_error *err);
 
 void gs__geometry_free(gs__geometry *g);
 

@@ -59,6 +59,7 @@
   X(PFNGLCREATEBUFFERSPROC, CreateBuffers)                                   \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
   X(PFNGLNAMEDBUFFERDATAPROC, NamedBufferData)                               \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, NamedBufferSubData)                         \
   X(PFNGLCREATEVERTEXARRAYSPROC, CreateVertexArrays)                         \
   X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                         \
   X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                               \
@@ -162,6 +163,7 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glCreateBuffers gs__gl_current->CreateBuffers
 #define glDeleteBuffers gs__gl_current->DeleteBuffers
 #define glNamedBufferData gs__gl_current->NamedBufferData
+#define glNamedBufferSubData gs__gl_current->NamedBufferSubData
 #define glCreateVertexArrays gs__gl_current->CreateVertexArrays
 #define glDeleteVertexArrays gs__gl_current->DeleteVertexArrays
 #define glBindVertexArray gs__gl_current->BindVertexArray

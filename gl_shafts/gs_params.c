@@ -2,8 +2,13 @@
 
 #include <stdio.h>
 
+/* The variant's switches. Live programs (not baked) switch only on what
+ * the scene's structure fixes: the switches that values decide (the spot
+ * profile's shape, a light inside the medium) are chosen at run time or
+ * take their general branch, so that moving or retuning a light selects
+ * the same program. */
 static void defines(gs__params *p, const sh_scene *scene,
-                    const gs__light_setup *ls, const char *extra) {
+                    const gs__light_setup *ls, int live, const char *extra) {
   const sh_light *l = ls ? ls->light : NULL;
   int type = !l ? 0 : l->type == SH_LIGHT_POINT ? 0 : l->type == SH_LIGHT_SPOT ? 1 : 2;
   const sh_medium *m = &scene->medium;
@@ -19,10 +24,11 @@ static void defines(gs__params *p, const sh_scene *scene,
   int grey = !m->present || (t.x == t.y && t.y == t.z);
   /* The spot profile's shape: smoothstep or hard edge; exponent 0, 1 or
    * other (pow). */
-  int smooth = l && l->type == SH_LIGHT_SPOT && l->cos_inner > l->cos_outer;
-  int expo = !l || l->type != SH_LIGHT_SPOT || l->exponent == 0 ? 0
+  int spot = l && l->type == SH_LIGHT_SPOT;
+  int smooth = spot && live ? 2 : spot && l->cos_inner > l->cos_outer;
+  int expo = spot && live ? 3 : !spot || l->exponent == 0 ? 0
              : l->exponent == 1 ? 1 : 2;
-  int inside = l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
+  int inside = !live && l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
                l->position.x >= m->bmin.x && l->position.x <= m->bmax.x &&
                l->position.y >= m->bmin.y && l->position.y <= m->bmax.y &&
                l->position.z >= m->bmin.z && l->position.z <= m->bmax.z;
@@ -44,7 +50,7 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   const gs__view *view = fr->view;
   const sh_scene *scene = fr->scene;
   gs__params_reset(p, fr->bake);
-  defines(p, scene, ls, extra);
+  defines(p, scene, ls, !fr->bake, extra);
   const sh_camera_frame *f = &view->frame;
   gs__param_v3(p, "u_eye", f->origin);
   gs__param_v3(p, "u_fwd", f->forward);

@@ -15,14 +15,17 @@ typedef struct gs__frame {
   const gs__view *view;
   gs__programs *progs;
   gs__params *params; /* reused by every draw */
-  int bake;           /* bake parameters into programs (gs_program.h) */
+  int bake;           /* bake parameters into programs (gs_program.h);
+                         0: live programs (gs_options.live) */
 } gs__frame;
 
 /* Starts the frame's parameter block for a draw with light ls (NULL: no
  * light):
  * resets it, then appends the variant's #define lines (LIGHT_TYPE, HAS_MAP,
  * SHADOW, CONE_CLIP, PHASE, GREY_SIGMA, SPOT_SMOOTH, SPOT_EXPONENT and
- * LIGHT_INSIDE), `extra` lines, and the camera's, the medium's and the
+ * LIGHT_INSIDE; live programs take SPOT_SMOOTH 2, SPOT_EXPONENT 3 and
+ * LIGHT_INSIDE 0, which hold for any value), `extra` lines, and the
+ * camera's, the medium's and the
  * light's parameters (u_eye ... u_g, u_lpos ... u_shadow_near). Without a
  * medium its coefficients are 0. */
 gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,

@@ -100,6 +100,7 @@ sh_status gs__program_get(gs__programs *c, const gs__glsl *vs,
   c->entry[c->n].id = id;
   c->entry[c->n].last_use = c->clock;
   c->n++;
+  c->built++;
   *out = id;
   return SH_OK;
 }

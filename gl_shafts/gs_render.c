@@ -1,5 +1,6 @@
 #include "gs_render.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 #include "gs_target.h"
 #include "gs_view.h"
 #include "sh_time.h"
+#include "shafts.h"
 
 struct gs_renderer {
   const sh_scene *scene;
@@ -29,10 +31,12 @@ struct gs_renderer {
   gs__sweep sweep;
   int nlights;
   GLuint *maps;               /* light-map textures, 0 if none */
+  unsigned long long *map_hash; /* what each was uploaded from */
   gs__light_setup *lights;
   gs__shadow_map *shadows;
   gs__lattice *lattices;
   float *readback;            /* width * height * 4 */
+  long built_reported;        /* progs.built at the end of the last draw */
 };
 
 gs_options gs_options_defaults(const sh_scene *scene) {
@@ -83,6 +87,8 @@ sh_status gs_options_check(const gs_options *o, sh_error *err) {
     return sh_error_set(err, SH_ERR_ARG, "xi must be lattice or exact");
   if (o->jitter != 0 && o->jitter != 1)
     return sh_error_set(err, SH_ERR_ARG, "jitter must be 0 or 1");
+  if (o->live != 0 && o->live != 1)
+    return sh_error_set(err, SH_ERR_ARG, "live must be 0 or 1, not %d", o->live);
   if (!(o->sub_angle_deg > 0 && o->sub_angle_deg <= 30))
     return sh_error_set(err, SH_ERR_ARG, "sub_angle must be in (0, 30] degrees, not %g",
                         o->sub_angle_deg);
@@ -143,6 +149,21 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
   return SH_OK;
 }
 
+/* A hash (FNV-1a over 32-bit words) of a light map's size and pixels:
+ * whether a sync must upload it again. */
+static unsigned long long map_hash(const sh_image *img) {
+  unsigned long long h = 1469598103934665603ULL;
+  h = (h ^ (unsigned)img->width) * 1099511628211ULL;
+  h = (h ^ (unsigned)img->height) * 1099511628211ULL;
+  size_t n = img->rgb ? (size_t)img->width * img->height * 3 : 0;
+  for (size_t i = 0; i < n; i++) {
+    uint32_t w;
+    memcpy(&w, &img->rgb[i], sizeof w);
+    h = (h ^ w) * 1099511628211ULL;
+  }
+  return h;
+}
+
 /* The light map as a float texture, at its own size or resampled to R x R
  * bilinearly (sh_image_lookup), sampled bilinearly with edge clamping as
  * sh_light_map_value samples it. */
@@ -176,6 +197,25 @@ static sh_status upload_map(const sh_light *l, int res, GLuint *out, sh_error *e
   return gs__gl_check("uploading a light map", err);
 }
 
+/* Uploads the light maps that differ from the textures' (all at first),
+ * deletes the textures of lights that lost their map. */
+static sh_status sync_maps(gs_renderer *r, sh_error *err) {
+  sh_status st = SH_OK;
+  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+    const sh_light *l = &r->scene->lights[i];
+    unsigned long long h = l->has_map ? map_hash(&l->map) : 0;
+    if (r->maps[i] && (!l->has_map || h != r->map_hash[i])) {
+      glDeleteTextures(1, &r->maps[i]);
+      r->maps[i] = 0;
+    }
+    if (l->has_map && !r->maps[i]) {
+      st = upload_map(l, r->opt.light_map_res, &r->maps[i], err);
+      r->map_hash[i] = h;
+    }
+  }
+  return st;
+}
+
 sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err) {
   *out = NULL;
@@ -193,12 +233,14 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   r->nlights = scene->nlights;
   size_t nl = (size_t)(scene->nlights ? scene->nlights : 1);
   r->maps = calloc(nl, sizeof *r->maps);
+  r->map_hash = calloc(nl, sizeof *r->map_hash);
   r->lights = calloc(nl, sizeof *r->lights);
   r->shadows = calloc(nl, sizeof *r->shadows);
   r->lattices = calloc(nl, sizeof *r->lattices);
   r->readback = malloc((size_t)scene->camera.width * scene->camera.height * 4 *
                        sizeof *r->readback);
-  if (!r->maps || !r->lights || !r->shadows || !r->lattices || !r->readback) {
+  if (!r->maps || !r->map_hash || !r->lights || !r->shadows || !r->lattices ||
+      !r->readback) {
     gs_renderer_free(r);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
@@ -209,9 +251,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   if (st == SH_OK)
     st = gs__target_create(&r->target, scene->camera.width, scene->camera.height, err);
   if (st == SH_OK) st = gs__sweep_init(&r->sweep, err);
-  for (int i = 0; i < scene->nlights && st == SH_OK; i++)
-    if (scene->lights[i].has_map)
-      st = upload_map(&scene->lights[i], opt->light_map_res, &r->maps[i], err);
+  if (st == SH_OK) st = sync_maps(r, err);
   if (r->ctx) gs__context_release(r->ctx);
   if (st != SH_OK) {
     gs_renderer_free(r);
@@ -219,6 +259,42 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   }
   *out = r;
   return SH_OK;
+}
+
+static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
+  const sh_scene *scene = r->scene;
+  sh_status st = SH_OK;
+  if (changed & (SH_CHANGED_SIZE | SH_CHANGED_CAMERA | SH_CHANGED_LIGHTS))
+    st = check_limits(r, err);
+  int w = scene->camera.width, h = scene->camera.height;
+  if (st == SH_OK && (w != r->target.width || h != r->target.height)) {
+    float *rb = realloc(r->readback, (size_t)w * h * 4 * sizeof *rb);
+    if (!rb) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    r->readback = rb;
+    gs__target_free(&r->target);
+    st = gs__target_create(&r->target, w, h, err);
+  }
+  /* The near plane follows the scene's bounds, which every part moves. */
+  if (changed) gs__view_init(&r->view, scene);
+  if (st == SH_OK && (changed & (SH_CHANGED_CAMERA | SH_CHANGED_SHAPES))) {
+    int rebuilt;
+    st = gs__geometry_update(scene, &r->view, &r->geom, &rebuilt, err);
+  }
+  if (st == SH_OK && (changed & SH_CHANGED_LIGHTS)) st = sync_maps(r, err);
+  return st;
+}
+
+sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
+  if (r->scene->nlights != r->nlights)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the scene's lights changed in number (%d, was %d): "
+                        "make a new renderer",
+                        r->scene->nlights, r->nlights);
+  sh_status st = gs__context_make_current(r->ctx, err);
+  if (st != SH_OK) return st;
+  st = sync(r, changed, err);
+  gs__context_release(r->ctx);
+  return st;
 }
 
 /* Waits for GL and returns the time since *t, resetting it. */
@@ -249,17 +325,20 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   const sh_scene *scene = r->scene;
   const gs_options *o = &r->opt;
   sh_status st = SH_OK;
-  gs__frame fr = {scene, &r->view, &r->progs, &r->params, 1};
+  gs__frame fr = {scene, &r->view, &r->progs, &r->params, !o->live};
   double start = sh_seconds(), t = start;
 
   /* Lights: their volumes and shadow maps. */
   for (int i = 0; i < r->nlights && st == SH_OK; i++) {
     gs__light_setup_free(&r->lights[i]);
-    st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
+    st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom,
+                              o->live, err);
     if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
-      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i],
-                             gs_light_shadow_map_res(o, scene->lights[i].type),
-                             &r->geom, err);
+      /* A map with no caster (live programs keep one) is lit everywhere:
+       * one texel does. */
+      int res = r->lights[i].ncasters
+                    ? gs_light_shadow_map_res(o, scene->lights[i].type) : 1;
+      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i], res, &r->geom, err);
       s.shadow_maps++;
     }
   }
@@ -315,6 +394,9 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   snprintf(s.renderer, sizeof s.renderer, "%s", gs__context_renderer(r->ctx));
   snprintf(s.backend, sizeof s.backend, "%s", gs__context_backend_name(r->ctx));
   snprintf(s.vendor, sizeof s.vendor, "%s", gs__context_vendor(r->ctx));
+  s.programs_compiled = (int)(r->progs.built - r->built_reported);
+  s.programs_cached = r->progs.n;
+  r->built_reported = r->progs.built;
   if (stats) *stats = s;
   return st;
 }
@@ -347,6 +429,7 @@ void gs_renderer_free(gs_renderer *r) {
     for (int i = 0; i < r->nlights; i++) gs__light_setup_free(&r->lights[i]);
   gs__context_free(r->ctx);
   free(r->maps);
+  free(r->map_hash);
   free(r->lights);
   free(r->shadows);
   free(r->lattices);

@@ -25,9 +25,8 @@
  * Threads: a renderer owns one GL context. Every gs_renderer_* call makes
  * it current on the calling thread on entry and releases it on exit
  * (restoring the EGL context the thread had current, if any), so a
- * renderer may be used from any thread (calls on one renderer from several
- * threads run one after the other), and the library never leaves its
- * context current on the caller's thread. With
+ * renderer may be used from any thread, one thread at a time, and the
+ * library never leaves its context current on the caller's thread. With
  * libglvnd a thread has one current context across EGL and GLX, so a
  * program that has its own GLX context current (Blender's main thread)
  * drives a renderer from another thread. */
@@ -76,6 +75,19 @@ typedef struct gs_options {
                                texels of the map its part of the ray
                                crosses (at most 64 samples) */
   gs_backend backend;       /* GS_BACKEND_AUTO unless asked */
+  int live;                 /* 0 (default): every value of the scene (camera,
+                               lights, medium) is baked into the shader
+                               programs as a constant, the fastest frames on
+                               llvmpipe but a program build (0.1-0.2 s) for
+                               every new set of values; 1: the values are
+                               uniforms and only structural switches (light
+                               kind, light map, shadow map kind, phase
+                               function type, spot narrower than 90
+                               degrees, the xi mode, jitter) select
+                               programs, so a renderer kept warm across
+                               scene changes (gs_renderer_sync) compiles
+                               nothing; frames cost more (docs/gl_shafts.md,
+                               "Live mode") */
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
@@ -125,6 +137,9 @@ typedef struct gs_stats {
   char renderer[128];      /* GL_RENDERER */
   char backend[16];        /* "egl" or "osmesa": the backend used */
   char vendor[128];        /* GL_VENDOR */
+  int programs_compiled;   /* shader programs built since the previous
+                              draw (by this draw or a sync before it) */
+  int programs_cached;     /* shader programs the renderer holds */
 } gs_stats;
 
 typedef struct gs_renderer gs_renderer;
@@ -140,6 +155,23 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
  * sh_image). `stats` may be NULL. */
 sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
                            sh_error *err);
+
+/* Takes in changes that the caller made to the renderer's scene
+ * (sh_scene_update of core/shafts.h) before the next draw. `changed` holds
+ * the SH_CHANGED_* bits it returned (camera 1, lights 2, medium 4, shape
+ * transforms 8, image size 16, background or ambient 32; ~0u: anything):
+ * a new size resizes the render targets, the camera and the shape
+ * transforms update the triangles of the shapes they concern (moved
+ * shapes, and curved ones whose tessellation follows the view), a light
+ * map that changed is uploaded again. Lights, shadow maps and the medium
+ * are worked out at every draw anyway. No program is built here; with
+ * gs_options.live, the next draw builds none either unless a structural
+ * switch changed (a light map added or removed, the phase function's
+ * type, a spot's shadow-map kind, the medium's grey coefficients turning
+ * coloured; stats.programs_compiled counts them). The scene must keep its
+ * number of lights and shapes (SH_ERR_ARG otherwise: make a new renderer).
+ * On error the renderer must be freed. */
+sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err);
 
 /* Frees the renderer and its context; NULL is allowed. Call it on no
  * thread other than one that could draw (the context must not be current

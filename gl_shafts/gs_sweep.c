@@ -155,9 +155,12 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   double dlmax = sqrt(1.0 + cf->tan_half_x * cf->tan_half_x + cf->tan_half_y * cf->tan_half_y);
   double slab = (ls->zmax - ls->zmin) / job->planes * dlmax;
   int tau_sub = 2.0 * smax * slab > GS__SUB_TAU;
+  /* Live programs always have the optical-depth sampling, turned off by a
+   * rate of 0: the camera and the lights decide the slabs' depth. */
+  int live = !job->frame->bake;
   char extra[160];
   snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define TAU_SUB %d\n",
-           job->lattice == NULL, job->jitter, tau_sub);
+           job->lattice == NULL, job->jitter, tau_sub || live);
   gs__params *p = gs__params_begin(job->frame, ls, extra);
   gs__param_f(p, "u_near", job->frame->view->znear);
   /* A spot's smooth edge is sampled at least once per its width, a
@@ -171,7 +174,7 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   gs__param_f(p, "u_inv_sub_angle", 1.0 / sub);
   gs__param_f(p, "u_inv_sub_texels", 1.0 / job->sub_texels);
   gs__param_2f(p, "u_map_size", job->map_width, job->map_height);
-  gs__param_f(p, "u_tau_rate", 2.0 * smax / GS__SUB_TAU);
+  gs__param_f(p, "u_tau_rate", tau_sub || !live ? 2.0 * smax / GS__SUB_TAU : 0.0);
   const double *m = job->lattice_map;
   gs__param_4f(p, "u_xi_xy", m[0], m[1], m[2], m[3]);
   gs__param_2f(p, "u_xi_z", m[4], m[5]);

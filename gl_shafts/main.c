@@ -48,8 +48,9 @@ static void usage(FILE *f) {
 "                         devices, a GPU first, then EGL surfaceless, then OSMesa;\n"
 "                         the environment variable SHAFTS_GL_BACKEND narrows auto)\n"
 "  --exposure E           PNG exposure in stops (default: render.exposure, else 0)\n"
-"  --stats FILE.json      write the time (split by stage), the counts, the backend\n"
-"                         and GL's renderer and vendor strings as JSON\n"
+"  --stats FILE.json      write the time (split by stage), the counts (shader\n"
+"                         programs compiled among them), the backend and GL's\n"
+"                         renderer and vendor strings as JSON\n"
 "  -q, --quiet            no messages but errors\n"
 "  -h, --help             show this help\n"
 "\n"
@@ -193,6 +194,8 @@ static void write_stats(sh_stats *s, const args *a, const gs_options *o,
   sh_stats_num(s, "fragments", st->fragments);
   sh_stats_num(s, "fragments_rasterized", st->fragments_rasterized);
   sh_stats_num(s, "triangles", (double)st->triangles);
+  sh_stats_num(s, "programs_compiled", st->programs_compiled);
+  sh_stats_num(s, "programs_cached", st->programs_cached);
 }
 
 int main(int argc, char **argv) {

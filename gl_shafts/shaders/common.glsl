@@ -10,10 +10,16 @@
 //   XI_EXACT    1: xi per fragment; 0: interpolated from the lattice
 //   JITTER      1: jittered sample depth within each plane's slab
 //   GREY_SIGMA  1 if sigma_t is the same in R, G and B
-//   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one
-//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent
+//   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one; 2:
+//               either, by the values (live programs)
+//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent; 3: any, by the
+//               value (live programs)
 //   LIGHT_INSIDE 1 if a point or spot light is inside the medium's box
-//   TAU_SUB     1 if a slab can be optically thick: sample it by optical depth
+//   TAU_SUB     1 if a slab can be optically thick: sample it by optical
+//               depth (live programs always do, with a rate of 0 when no
+//               slab is thick)
+// Live programs (gs_options.live) switch only on what the scene's
+// structure fixes, so that new values select the same program.
 // Conventions: p is a world point; z is view depth, the distance along the
 // camera's forward axis, so the pixel ray is u_eye + z * d with d the
 // unnormalised direction of view_ray (d . forward = 1).
@@ -146,7 +152,12 @@ float phase(float c) {
 
 // The spot profile at cos(theta) (sh_spot_profile).
 float spot_profile(float c) {
-#if SPOT_SMOOTH
+#if SPOT_SMOOTH == 2
+  // A hard edge is u in {0, 1}, where the smoothstep is exact.
+  float u = u_spot.y > u_spot.x ? clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0)
+                                : (c >= u_spot.x ? 1.0 : 0.0);
+  float f = u * u * (3.0 - 2.0 * u);
+#elif SPOT_SMOOTH
   float u = clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0);
   float f = u * u * (3.0 - 2.0 * u);
 #else
@@ -156,6 +167,8 @@ float spot_profile(float c) {
   f *= max(c, 0.0);
 #elif SPOT_EXPONENT == 2
   f *= pow(max(c, 0.0), u_spot.z);
+#elif SPOT_EXPONENT == 3
+  f *= u_spot.z == 0.0 ? 1.0 : u_spot.z == 1.0 ? max(c, 0.0) : pow(max(c, 0.0), u_spot.z);
 #endif
   return f;
 }
