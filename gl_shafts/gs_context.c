@@ -1,6 +1,7 @@
 #include "gs_context.h"
 
 #include <dlfcn.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +9,7 @@
 struct gs__context {
   const gs__context_backend *backend;
   void *impl;
+  pthread_mutex_t lock; /* held from make_current to release */
   gs__gl_api gl;
   char renderer[128], vendor[128], version[128];
 };
@@ -29,11 +31,15 @@ static gs__gl_proc get_proc(void *user, const char *name) {
   return ctx->backend->get_proc(ctx->impl, name);
 }
 
-/* Creates the context on one backend, leaving it current. */
+/* Creates the context on one backend, leaving it current (and locked). */
 static sh_status create_on(const gs__context_backend *b, gs__context *ctx,
                            sh_error *err) {
+  pthread_mutex_lock(&ctx->lock);
   sh_status st = b->create(&ctx->impl, err);
-  if (st != SH_OK) return st;
+  if (st != SH_OK) {
+    pthread_mutex_unlock(&ctx->lock);
+    return st;
+  }
   ctx->backend = b;
   st = gs__gl_load(get_proc, ctx, &ctx->gl, err);
   if (st == SH_OK) {
@@ -75,6 +81,7 @@ sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err)
                         (int)want);
   gs__context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  pthread_mutex_init(&ctx->lock, NULL);
   sh_error egl_err = {0}, osmesa_err = {0};
   st = SH_ERR_DEVICE;
   if (want != GS_BACKEND_OSMESA) st = create_on(&gs__context_egl, ctx, &egl_err);
@@ -84,6 +91,7 @@ sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err)
     *out = ctx;
     return SH_OK;
   }
+  pthread_mutex_destroy(&ctx->lock);
   free(ctx);
   if (st == SH_ERR_NOMEM) return sh_error_set(err, st, "out of memory");
   if (want == GS_BACKEND_EGL)
@@ -102,14 +110,17 @@ sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err)
 }
 
 sh_status gs__context_make_current(gs__context *ctx, sh_error *err) {
+  pthread_mutex_lock(&ctx->lock);
   sh_status st = ctx->backend->make_current(ctx->impl, err);
   if (st == SH_OK) gs__gl_current = &ctx->gl;
+  else pthread_mutex_unlock(&ctx->lock);
   return st;
 }
 
 void gs__context_release(gs__context *ctx) {
   ctx->backend->release(ctx->impl);
   gs__gl_current = NULL;
+  pthread_mutex_unlock(&ctx->lock);
 }
 
 const char *gs__context_backend_name(const gs__context *ctx) {
@@ -128,5 +139,6 @@ const char *gs__context_version(const gs__context *ctx) {
 void gs__context_free(gs__context *ctx) {
   if (!ctx) return;
   if (ctx->backend) ctx->backend->destroy(ctx->impl);
+  pthread_mutex_destroy(&ctx->lock);
   free(ctx);
 }

@@ -17,11 +17,14 @@
  * Both libraries are loaded at run time, so gl_shafts builds with neither
  * installed and runs with either (Mesa 25.1 removed OSMesa).
  *
- * A context is current on at most one thread at a time. make_current makes
+ * A context is current on at most one thread at a time. make_current takes
+ * the context's lock (waiting while another thread has it current), makes
  * it current on the calling thread and points gs__gl_current (gs_gl.h) at
- * its function table; release undoes both, restoring the EGL context that
- * was current on the thread before (if any), so a caller's own context is
- * left as it was. Every public gs_renderer_* call is bracketed by the two. */
+ * its function table; release undoes the three, restoring the EGL context
+ * that was current on the thread before (if any), so a caller's own
+ * context is left as it was. Every public gs_renderer_* call is bracketed
+ * by the two, so calls on one renderer from several threads run one after
+ * the other. */
 #ifndef GS_CONTEXT_H
 #define GS_CONTEXT_H
 
@@ -59,8 +62,8 @@ typedef struct gs__context gs__context;
  * none gives OpenGL 4.5 core. */
 sh_status gs__context_create(gs_backend backend, gs__context **out, sh_error *err);
 
-/* Makes the context current on the calling thread (SH_ERR_DEVICE if it is
- * current on another one). */
+/* Makes the context current on the calling thread, first waiting for
+ * another thread's release. */
 sh_status gs__context_make_current(gs__context *ctx, sh_error *err);
 
 /* Makes it not current on the calling thread. */

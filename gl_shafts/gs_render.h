@@ -25,8 +25,9 @@
  * Threads: a renderer owns one GL context. Every gs_renderer_* call makes
  * it current on the calling thread on entry and releases it on exit
  * (restoring the EGL context the thread had current, if any), so a
- * renderer may be used from any thread, one thread at a time, and the
- * library never leaves its context current on the caller's thread. With
+ * renderer may be used from any thread (calls on one renderer from several
+ * threads run one after the other), and the library never leaves its
+ * context current on the caller's thread. With
  * libglvnd a thread has one current context across EGL and GLX, so a
  * program that has its own GLX context current (Blender's main thread)
  * drives a renderer from another thread. */

@@ -3,7 +3,8 @@
  * here: a renderer created on one thread draws on another (as the Blender
  * add-on's worker thread draws), with the same image as on the creating
  * thread; two renderers draw at once on two threads (each thread has its
- * own current GL function table); after every call no GL context is
+ * own current GL function table); two threads drawing with one renderer
+ * take turns; after every call no GL context is
  * current on the calling thread (eglGetCurrentContext() == EGL_NO_CONTEXT
  * and OSMesaGetCurrentContext() == NULL); and, on EGL, a context the
  * caller had current before a call is current again after it, as
@@ -164,6 +165,15 @@ int main(void) {
     tu_check(j1.released && j2.released, "both threads have no context current after");
     tu_check(same(here, a, n) && same(here, b, n), "both images equal the first");
   }
+  /* Two threads drawing at once with one renderer: the calls take turns. */
+  job j3 = make_job(r, a), j4 = make_job(r, b);
+  pthread_t t3, t4;
+  pthread_create(&t3, NULL, draw_job, &j3);
+  pthread_create(&t4, NULL, draw_job, &j4);
+  pthread_join(t3, NULL);
+  pthread_join(t4, NULL);
+  tu_check(j3.st == SH_OK && j4.st == SH_OK && same(here, a, n) && same(here, b, n),
+           "two threads drawing with one renderer take turns, same images");
   if (!strcmp(stats.backend, "egl")) check_restores(r, a);
 
   gs_renderer_free(r2);

@@ -34,9 +34,9 @@ from . import coords
 # Radiant intensity on the axis of a Cycles area light per watt of power:
 # Cycles gives an area light of power P the radiance P / (4 A), so its
 # intensity on the axis is L A = P / 4. Measured with Cycles 3.4 by
-# blender_addon/convert_tests/area_power.py (docs/blender.md, Mapping): a 5 cm square light of
-# 100 W, 2 m above a white Lambert floor, gives I = 24.98 W/sr (point light
-# of 100 W: 7.956 = 100 / (4 pi)).
+# blender_addon/convert_tests/area_power.py (docs/blender.md, Mapping): a
+# 5 cm square light of 100 W, 2 m above a white Lambert floor, gives
+# I = 24.98 W/sr (point light of 100 W: 7.956 = 100 / (4 pi)).
 AREA_INTENSITY_PER_WATT = 0.25
 
 
@@ -163,6 +163,10 @@ def export_light(obj, matrix_world, warnings):
                      "exponent 1, the same axial intensity), so its shadows are sharp."
                      % (what, light.shape.lower(), light.size,
                         light.size_y if light.shape in ("RECTANGLE", "ELLIPSE") else light.size))
+        spread = getattr(light, "spread", math.pi)
+        if spread < math.pi - 1e-6:
+            warnings.add("%s has a spread of %.4g degrees; the scene's emitter is "
+                         "Lambertian (a spread of 180)." % (what, math.degrees(spread)))
         return {"type": "spot", "position": position, "direction": direction,
                 "intensity": [c * energy * AREA_INTENSITY_PER_WATT for c in colour],
                 "outer_angle_deg": 90.0, "inner_angle_deg": 90.0, "exponent": 1.0}
