@@ -3,6 +3,7 @@
 #include "sh_parse_int.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,6 +83,21 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
   if (img->width < 1 || img->height < 1 || !img->rgb) {
     st = sh__fail_at(&p->c, key, SH_ERR_IMAGE, "the image '%s' has no pixels",
                      path);
+    goto out;
+  }
+  /* Texels scale light (maps) or give heights: each must be a finite,
+   * non-negative number, or the radiance would be NaN, infinite or
+   * negative. The first bad texel is named (column, row from the top). */
+  for (long i = 0; i < (long)img->width * img->height * 3; i++) {
+    float v = img->rgb[i];
+    if (isfinite(v) && v >= 0.0f) continue;
+    long px = i / 3;
+    st = sh__fail_at(&p->c, key, SH_ERR_IMAGE,
+                     "the image '%s' has the value %g at texel (%ld, %ld), "
+                     "channel %c: expected a finite number >= 0",
+                     path, (double)v, px % img->width, px / img->width,
+                     "RGB"[i % 3]);
+    sh_image_free(img);
     goto out;
   }
 out:

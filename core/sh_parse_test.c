@@ -7,6 +7,7 @@
 #include "sh_parse_ctx.h"
 #include "sh_test.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -820,6 +821,42 @@ static void test_confined_names(void) {
   rmdir(sub);
 }
 
+/* Light-map and heightfield texels must be finite and non-negative: NaN,
+ * infinities and negative values are located errors naming the texel
+ * (issue 11, non-finite input). */
+static void test_bad_texels(void) {
+  const float bad[] = {NAN, INFINITY, -INFINITY, -0.5f};
+  for (int i = 0; i < 4; i++) {
+    sh_image img;
+    sh_error err;
+    SH_CHECK(sh_image_alloc(&img, 3, 2, &err) == SH_OK);
+    for (int k = 0; k < 18; k++) img.rgb[k] = 0.5f;
+    img.rgb[3 * (1 * 3 + 2) + 1] = bad[i]; /* texel (2, 1), channel G */
+    char path[512];
+    path_in_tmp(path, sizeof path, "badmap.exr");
+    SH_CHECK(sh_image_write(path, &img, 0.0, &err) == SH_OK);
+    sh_image_free(&img);
+    for (int hf = 0; hf < 2; hf++) {
+      const char *text =
+          hf ? MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
+               "[{\"type\": \"heightfield\", \"material\": \"m\", "
+               "\"image\": \"badmap.exr\", \"min\": [0, 0, 0], "
+               "\"max\": [1, 1, 1]}]}"
+             : MINIMAL_HEAD ", \"lights\": [{\"type\": \"spot\", "
+               "\"position\": [0, 2, 0], \"direction\": [0, -1, 0], "
+               "\"intensity\": [1, 1, 1], \"outer_angle_deg\": 20, "
+               "\"light_map\": {\"image\": \"badmap.exr\"}}]}";
+      sh_scene *s = NULL;
+      SH_CHECK(sh_scene_parse(text, "mem.json", tmpdir, &s, &err) ==
+               SH_ERR_IMAGE);
+      SH_CHECK(s == NULL);
+      SH_CHECK(strstr(err.message, "texel (2, 1), channel G") != NULL);
+      SH_CHECK(strstr(err.path, "image") != NULL && err.line > 0);
+    }
+    unlink(path);
+  }
+}
+
 /* The locator on its own: escaped keys, multi-byte characters, nesting. */
 static void test_locator(void) {
   const char *text = "{\"\\u00e9t\\u00e9\": 1, \"a\\\"b\": {\"x\": [10, [20, "
@@ -892,6 +929,7 @@ int main(void) {
   test_io_errors();
   test_parse_base_dir();
   test_confined_names();
+  test_bad_texels();
   test_locator();
   remove_tmpdir();
   SH_TEST_DONE();
