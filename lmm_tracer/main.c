@@ -6,14 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lmm_area.h"
-#include "lmm_method.h"
+#include <jansson.h>
+
+#include "lmm_render.h"
 #include "sh_cli.h"
 #include "sh_file.h"
 #include "sh_image.h"
 #include "sh_parse.h"
 #include "sh_progress.h"
-#include "sh_reference.h"
 
 static const char *const TOOL = "lmm_tracer";
 
@@ -60,66 +60,64 @@ static void usage(FILE *f) {
 
 #define MAX_OUTPUTS 8
 
-enum { MODE_REFERENCE, MODE_WHITTED, MODE_LMM };
-static const char *const mode_names[] = {"reference", "whitted", "lmm", NULL};
-static const char *const scheme_names[] = {"default", "straight",
-                                           "refract-trace", "refract-both",
-                                           NULL};
-
 typedef struct args {
   const char *scene, *stats;
   const char *outputs[MAX_OUTPUTS];
   int noutputs;
-  int mode, scheme, local, quiet, has_exposure, volume_exact, refined;
-  long spp, max_depth, seed, threads, caustic_rays, area_samples;
-  double exposure, mesh_step, kl, area_radius;
+  int quiet, has_exposure;
+  double exposure;
+  lmm_render_options render;
 } args;
 
-static int choice(const char *option, const char *v, const char *const *names,
-                  int first, int *out) {
-  for (int i = first; names[i]; i++)
-    if (!strcmp(v, names[i])) {
-      *out = i;
-      return 1;
-    }
-  fprintf(stderr, "%s: %s: unknown value '%s'; expected one of:", TOOL, option,
-          v);
-  for (int i = first; names[i]; i++) fprintf(stderr, " %s", names[i]);
-  fprintf(stderr, "\n");
-  return 0;
-}
+/* The command line's value options and the lmm_render option each sets
+ * (its limits and choices are lmm_render_options_set's). */
+static const char *const value_options[][2] = {
+    {"--mode", "mode"},
+    {"--scheme", "scheme"},
+    {"--lmm-volume", "volume"},
+    {"--mesh-step", "mesh_step"},
+    {"--kl", "kl"},
+    {"--caustic-rays", "caustic_rays"},
+    {"--area-radius", "area_radius"},
+    {"--area-samples", "area_samples"},
+    {"--spp", "spp"},
+    {"--max-depth", "max_depth"},
+    {"--seed", "seed"},
+    {"--threads", "threads"},
+};
 
-static int positive(const char *option, const char *v, double *out) {
-  if (!sh_cli_double(TOOL, option, v, out)) return 0;
-  if (*out > 0) return 1;
-  fprintf(stderr, "%s: %s expects a number > 0, got '%s'\n", TOOL, option, v);
-  return 0;
+static const char *render_key(const char *flag) {
+  for (size_t i = 0; i < sizeof value_options / sizeof *value_options; i++)
+    if (!strcmp(flag, value_options[i][0])) return value_options[i][1];
+  return NULL;
 }
 
 /* Returns -1 to go on, else an exit status. */
 static int parse_args(int argc, char **argv, args *a) {
+  sh_error err;
   memset(a, 0, sizeof *a);
-  a->spp = a->max_depth = a->seed = a->caustic_rays = a->area_samples = -1;
-  a->area_radius = -1;
+  lmm_render_options_init(&a->render);
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i];
     const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    int ok = 1;
+    const char *key = render_key(o);
     if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
       usage(stdout);
       return 0;
     } else if (!strcmp(o, "-q") || !strcmp(o, "--quiet")) {
       a->quiet = 1;
       continue;
-    } else if (!strcmp(o, "--local")) {
-      a->local = 1;
-      continue;
-    } else if (!strcmp(o, "--refined")) {
-      a->refined = 1;
+    } else if (!strcmp(o, "--local") || !strcmp(o, "--refined")) {
+      lmm_render_options_set(&a->render, o + 2, "1", NULL);
       continue;
     } else if (o[0] == '-' && o[1] != '\0' && !v) {
       fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
       return 2;
+    } else if (key) {
+      if (lmm_render_options_set(&a->render, key, v, &err) != SH_OK) {
+        fprintf(stderr, "%s: %s: %s\n", TOOL, o, err.message);
+        return 2;
+      }
     } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
       if (a->noutputs == MAX_OUTPUTS) {
         fprintf(stderr, "%s: at most %d outputs\n", TOOL, MAX_OUTPUTS);
@@ -128,99 +126,53 @@ static int parse_args(int argc, char **argv, args *a) {
       a->outputs[a->noutputs++] = v;
     } else if (!strcmp(o, "--stats")) {
       a->stats = v;
-    } else if (!strcmp(o, "--mode")) {
-      ok = choice(o, v, mode_names, 0, &a->mode);
-    } else if (!strcmp(o, "--scheme")) {
-      ok = choice(o, v, scheme_names, 1, &a->scheme);
-    } else if (!strcmp(o, "--lmm-volume")) {
-      static const char *const vols[] = {"mesh", "exact", NULL};
-      ok = choice(o, v, vols, 0, &a->volume_exact);
-    } else if (!strcmp(o, "--mesh-step")) {
-      ok = positive(o, v, &a->mesh_step);
-    } else if (!strcmp(o, "--kl")) {
-      ok = positive(o, v, &a->kl);
-    } else if (!strcmp(o, "--area-radius")) {
-      ok = sh_cli_double(TOOL, o, v, &a->area_radius) && a->area_radius >= 0;
-      if (!ok) fprintf(stderr, "%s: %s expects a number >= 0\n", TOOL, o);
-    } else if (!strcmp(o, "--area-samples")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 1 << 20, &a->area_samples);
-    } else if (!strcmp(o, "--caustic-rays")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 1L << 40, &a->caustic_rays);
-    } else if (!strcmp(o, "--spp")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 1 << 24, &a->spp);
-    } else if (!strcmp(o, "--max-depth")) {
-      ok = sh_cli_int(TOOL, o, v, 0, 64, &a->max_depth);
-    } else if (!strcmp(o, "--seed")) {
-      ok = sh_cli_int(TOOL, o, v, 0, 2147483647L, &a->seed);
-    } else if (!strcmp(o, "--threads")) {
-      ok = sh_cli_int(TOOL, o, v, 0, 1024, &a->threads);
     } else if (!strcmp(o, "--exposure")) {
-      ok = sh_cli_double(TOOL, o, v, &a->exposure);
+      if (!sh_cli_double(TOOL, o, v, &a->exposure)) return 2;
       a->has_exposure = 1;
     } else {
       const char **operands[] = {&a->scene};
       if (!sh_cli_operand(TOOL, o, operands, 1)) return 2;
       continue;
     }
-    if (!ok) return 2;
     i++;
   }
   if (!sh_cli_check_render_outputs(TOOL, a->scene, a->outputs, a->noutputs))
     return 2;
-  if (a->refined && a->mode != MODE_LMM) {
-    fprintf(stderr, "%s: --refined needs --mode lmm --scheme refract-both\n",
-            TOOL);
-    return 2;
-  }
-  if (a->area_radius >= 0 && a->mode != MODE_WHITTED) {
-    fprintf(stderr, "%s: --area-radius needs --mode whitted\n", TOOL);
+  if (lmm_render_options_check(&a->render, &err) != SH_OK) {
+    fprintf(stderr, "%s: %s\n", TOOL, err.message);
     return 2;
   }
   return -1;
 }
 
-static void write_stats(const args *a, const sh_reference_options *opt,
-                        const sh_image *img, const sh_reference_stats *st,
-                        const lmm *method, sh_lmm_scheme scheme, double h,
-                        double kl, sh_error *err, int *rc) {
-  sh_stats *s = sh_stats_new();
-  sh_stats_str(s, "tool", TOOL);
-  sh_stats_str(s, "mode", mode_names[a->mode]);
-  sh_stats_str(s, "scheme", scheme_names[scheme]);
-  sh_stats_str(s, "scene", a->scene);
-  sh_stats_num(s, "width", img->width);
-  sh_stats_num(s, "height", img->height);
-  sh_stats_num(s, "spp", opt->spp);
-  sh_stats_num(s, "max_depth", opt->max_depth);
-  sh_stats_num(s, "seed", (double)opt->seed);
-  sh_stats_num(s, "threads", st->threads);
-  sh_stats_num(s, "seconds", st->seconds);
-  sh_stats_num(s, "camera_rays", (double)st->camera_rays);
-  sh_stats_num(s, "closest_rays", (double)st->closest_rays);
-  sh_stats_num(s, "occlusion_rays", (double)st->occlusion_rays);
-  sh_stats_num(s, "medium_samples", (double)st->medium_samples);
-  if (method) {
-    lmm_stats ls;
-    lmm_get_stats(method, &ls);
-    sh_stats_num(s, "mesh_step", h);
-    sh_stats_num(s, "kl", kl);
-    sh_stats_num(s, "mesh_points_total", (double)ls.mesh.points_total);
-    sh_stats_num(s, "mesh_points_computed", (double)ls.mesh.points_computed);
-    sh_stats_num(s, "mesh_points_uncached", (double)ls.mesh.points_uncached);
-    sh_stats_num(s, "mesh_fraction_computed",
-                 ls.mesh.points_total
-                     ? (double)ls.mesh.points_computed / ls.mesh.points_total
-                     : 0.0);
-    sh_stats_str(s, "mesh_storage", ls.mesh.bits ? "bits" : "floats");
-    sh_stats_num(s, "shaded_points", (double)ls.shaded_points);
-    sh_stats_num(s, "empty_sets", (double)ls.empty_sets);
-    sh_stats_num(s, "candidate_rays", (double)ls.candidate_rays);
-    sh_stats_num(s, "volume_lookups", (double)ls.volume_lookups);
-    sh_stats_num(s, "caustic_points", (double)ls.caustic_points);
-    sh_stats_num(s, "caustic_seconds", ls.build_seconds);
+/* The --stats file: lmm_render's statistics with the tool and scene. */
+static sh_status write_stats(const args *a, const lmm_render_stats *st,
+                             sh_error *err) {
+  size_t n = lmm_render_stats_json(st, NULL, 0);
+  char *text = n ? malloc(n + 1) : NULL;
+  json_t *o = NULL;
+  sh_status status = SH_ERR_NOMEM;
+  if (text) {
+    lmm_render_stats_json(st, text, n + 1);
+    o = json_loads(text, 0, NULL);
+    free(text);
+    text = NULL;
   }
-  if (sh_stats_write(s, a->stats, err) != SH_OK) *rc = sh_cli_report(TOOL, err);
-  sh_stats_free(s);
+  if (o) {
+    json_object_set_new(o, "tool", json_string(TOOL));
+    json_object_set_new(o, "scene", json_string(a->scene));
+    text = json_dumps(o, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+    json_decref(o);
+  }
+  if (text) {
+    size_t len = strlen(text);
+    text[len] = '\n'; /* replaces the terminator; the size includes it */
+    status = sh_file_write_atomic(a->stats, text, len + 1, err);
+    free(text);
+  } else {
+    sh_error_set(err, status, "out of memory writing the statistics");
+  }
+  return status;
 }
 
 int main(int argc, char **argv) {
@@ -236,77 +188,29 @@ int main(int argc, char **argv) {
   if (scene->nlights == 0 && !a.quiet)
     fprintf(stderr, "%s: warning: the scene has no lights; the image is "
                     "black but for emission and background\n", TOOL);
-
-  sh_reference_options opt = sh_reference_defaults(scene);
-  if (a.spp > 0) opt.spp = (int)a.spp;
-  if (a.max_depth >= 0) opt.max_depth = (int)a.max_depth;
-  if (a.seed >= 0) opt.seed = (uint64_t)a.seed;
-  opt.threads = sh_reference_threads((int)a.threads);
-  opt.local = a.local;
-  sh_lmm_scheme scheme = a.scheme ? (sh_lmm_scheme)a.scheme
-                                  : scene->render.scheme;
-  if (scheme == SH_SCHEME_DEFAULT) scheme = SH_SCHEME_REFRACT_TRACE;
-  opt.refract = scheme != SH_SCHEME_STRAIGHT;
   double exposure = a.has_exposure ? a.exposure : scene->render.exposure;
-  double h = a.mesh_step > 0 ? a.mesh_step
-             : scene->render.mesh_step > 0 ? scene->render.mesh_step
-                                           : lmm_default_step(scene);
-  double kl = a.kl > 0 ? a.kl : scene->render.kl > 0 ? scene->render.kl : 2.0;
 
-  sh_rt *rt = NULL;
-  lmm *method = NULL;
-  lmm_area *area = NULL;
-  sh_image img = {0};
-  sh_reference_stats st;
-  sh_status status = SH_OK;
-  if (a.refined && scheme != SH_SCHEME_REFRACT_BOTH)
-    status = sh_error_set(&err, SH_ERR_ARG,
-                          "--refined is a variant of the refract-both scheme");
-  else if (scheme == SH_SCHEME_REFRACT_BOTH && a.mode != MODE_LMM)
-    status = sh_error_set(&err, SH_ERR_ARG,
-                          "the refract-both scheme needs --mode lmm: "
-                          "refracted visibility comes from the light mesh");
-  if (status == SH_OK) status = sh_rt_create(scene, &rt, &err);
-  if (status == SH_OK && a.mode == MODE_LMM) {
-    lmm_options lo;
-    memset(&lo, 0, sizeof lo);
-    lo.h = h;
-    lo.kl = kl;
-    lo.scheme = scheme;
-    lo.caustic_rays = a.caustic_rays > 0 ? a.caustic_rays : 200000;
-    lo.volume = !a.volume_exact;
-    lo.refined = a.refined;
-    status = lmm_create(scene, rt, &lo, opt.threads, &method, &err);
-    if (status == SH_OK) opt.hook = lmm_hook(method);
-  } else if (status == SH_OK && a.area_radius >= 0) {
-    status = lmm_area_create(scene, rt, a.area_radius,
-                             a.area_samples > 0 ? (int)a.area_samples : 16,
-                             &area, &err);
-    if (status == SH_OK) opt.hook = lmm_area_hook(area);
-  }
-  opt.rt = rt;
   sh_progress bar;
-  sh_progress_init(&bar, a.mode == MODE_REFERENCE ? "reference" : "render",
+  sh_progress_init(&bar,
+                   a.render.mode == LMM_MODE_REFERENCE ? "reference" : "render",
                    !a.quiet);
-  opt.progress = sh_progress_update;
-  opt.progress_user = &bar;
-  if (status == SH_OK)
-    status = sh_render_reference(scene, &opt, &img, &st, &err);
+  a.render.progress = sh_progress_update;
+  a.render.progress_user = &bar;
+  sh_image img = {0};
+  lmm_render_stats st;
+  sh_status status =
+      sh_image_alloc(&img, scene->camera.width, scene->camera.height, &err);
+  if (status == SH_OK) status = lmm_render(scene, &a.render, img.rgb, &st, &err);
   sh_progress_finish(&bar);
   for (int k = 0; status == SH_OK && k < a.noutputs; k++)
     status = sh_image_write(a.outputs[k], &img, exposure, &err);
-  if (status != SH_OK)
-    rc = sh_cli_report(TOOL, &err);
-  else if (a.stats)
-    write_stats(&a, &opt, &img, &st, method, scheme, h, kl, &err, &rc);
+  if (status == SH_OK && a.stats) status = write_stats(&a, &st, &err);
+  if (status != SH_OK) rc = sh_cli_report(TOOL, &err);
   if (rc == 0 && !a.quiet)
     for (int k = 0; k < a.noutputs; k++)
       fprintf(stderr, "%s: wrote %s (%dx%d, rendered in %.2f s)\n", TOOL,
               a.outputs[k], img.width, img.height, st.seconds);
   sh_image_free(&img);
-  lmm_free(method);
-  lmm_area_free(area);
-  sh_rt_free(rt);
   sh_scene_free(scene);
   return rc;
 }

@@ -1,0 +1,347 @@
+#include "lmm_render.h"
+
+#include <errno.h>
+#include <jansson.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "lmm_area.h"
+#include "sh_reference.h"
+#include "sh_rt.h"
+#include "sh_time.h"
+
+/* ---- Options by name ---- */
+
+typedef enum kind { K_INT, K_LLONG, K_DOUBLE, K_BOOL, K_CHOICE } kind;
+
+static const char *const mode_names[] = {"reference", "whitted", "lmm", NULL};
+/* In the order of sh_lmm_scheme, after DEFAULT. */
+static const char *const scheme_names[] = {"straight", "refract-trace",
+                                           "refract-both", NULL};
+static const char *const volume_names[] = {"mesh", "exact", NULL};
+
+/* One row per option: its name, where it lives, its kind and limits (for
+ * numbers: lo, hi, and whether lo is excluded), or its choices (stored as
+ * the index plus `first`). */
+typedef struct option {
+  const char *name;
+  size_t offset;
+  kind kind;
+  double lo, hi;
+  int lo_open;
+  const char *const *choices;
+  int first;
+} option;
+
+#define OPT(field) #field, offsetof(lmm_render_options, field)
+static const option options[] = {
+    {OPT(mode), K_CHOICE, 0, 0, 0, mode_names, 0},
+    {OPT(scheme), K_CHOICE, 0, 0, 0, scheme_names, 1},
+    {"volume", offsetof(lmm_render_options, volume_exact), K_CHOICE, 0, 0, 0,
+     volume_names, 0},
+    {OPT(local), K_BOOL, 0, 1, 0, NULL, 0},
+    {OPT(refined), K_BOOL, 0, 1, 0, NULL, 0},
+    {OPT(mesh_step), K_DOUBLE, 0, INFINITY, 1, NULL, 0},
+    {OPT(kl), K_DOUBLE, 0, INFINITY, 1, NULL, 0},
+    {OPT(caustic_rays), K_LLONG, 1, 1099511627776.0, 0, NULL, 0},
+    {OPT(area_radius), K_DOUBLE, 0, INFINITY, 0, NULL, 0},
+    {OPT(area_samples), K_INT, 1, 1 << 20, 0, NULL, 0},
+    {OPT(spp), K_INT, 1, 1 << 24, 0, NULL, 0},
+    {OPT(max_depth), K_INT, 0, 64, 0, NULL, 0},
+    {OPT(seed), K_LLONG, 0, 4294967295.0, 0, NULL, 0},
+    {OPT(threads), K_INT, 0, 1024, 0, NULL, 0},
+};
+#undef OPT
+
+/* An option's error: the message, and the option's name as the key. */
+static sh_status fail(sh_error *err, const char *key, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static sh_status fail(sh_error *err, const char *key, const char *fmt, ...) {
+  char msg[SH_ERROR_MSG_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  sh_error_set(err, SH_ERR_ARG, "%s", msg);
+  if (err) snprintf(err->path, sizeof err->path, "%s", key);
+  return SH_ERR_ARG;
+}
+
+static sh_status bad_choice(const option *o, const char *value,
+                            sh_error *err) {
+  char list[200] = "";
+  size_t n = 0;
+  for (int i = 0; o->choices[i] && n < sizeof list; i++)
+    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
+                          o->choices[i]);
+  return fail(err, o->name, "unknown value '%s'; expected one of: %s", value,
+              list);
+}
+
+static sh_status set_number(const option *o, void *field, const char *value,
+                            sh_error *err) {
+  char *end = NULL;
+  errno = 0;
+  double x = strtod(value, &end);
+  int integral = o->kind != K_DOUBLE;
+  int ok = end != value && *end == '\0' && errno == 0 && isfinite(x) &&
+           (o->lo_open ? x > o->lo : x >= o->lo) && x <= o->hi &&
+           (!integral || x == floor(x));
+  if (!ok) {
+    if (integral)
+      return fail(err, o->name,
+                  "expected an integer from %.0f to %.0f, found '%s'", o->lo,
+                  o->hi, value);
+    return fail(err, o->name, "expected a number %s %g, found '%s'",
+                o->lo_open ? ">" : ">=", o->lo, value);
+  }
+  if (o->kind == K_INT)
+    *(int *)field = (int)x;
+  else if (o->kind == K_LLONG)
+    *(long long *)field = (long long)x;
+  else
+    *(double *)field = x;
+  return SH_OK;
+}
+
+sh_status lmm_render_options_set(lmm_render_options *opt, const char *key,
+                                 const char *value, sh_error *err) {
+  if (!opt || !key || !value)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "lmm_render_options_set: no options, key or value");
+  for (size_t i = 0; i < sizeof options / sizeof *options; i++) {
+    const option *o = &options[i];
+    if (strcmp(o->name, key) != 0) continue;
+    void *field = (char *)opt + o->offset;
+    switch (o->kind) {
+    case K_BOOL:
+      if (!strcmp(value, "1") || !strcasecmp(value, "true"))
+        *(int *)field = 1;
+      else if (!strcmp(value, "0") || !strcasecmp(value, "false"))
+        *(int *)field = 0;
+      else
+        return fail(err, key, "expected true or false, found '%s'", value);
+      return SH_OK;
+    case K_CHOICE:
+      for (int c = 0; o->choices[c]; c++)
+        if (!strcmp(o->choices[c], value)) {
+          *(int *)field = c + o->first;
+          return SH_OK;
+        }
+      return bad_choice(o, value, err);
+    default: return set_number(o, field, value, err);
+    }
+  }
+  char list[400] = "";
+  size_t n = 0;
+  for (size_t i = 0; i < sizeof options / sizeof *options && n < sizeof list;
+       i++)
+    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
+                          options[i].name);
+  return fail(err, key, "unknown option '%s'; the options are: %s", key, list);
+}
+
+void lmm_render_options_init(lmm_render_options *opt) {
+  memset(opt, 0, sizeof *opt);
+  opt->mode = LMM_MODE_REFERENCE;
+  opt->area_radius = -1;
+  opt->max_depth = -1;
+  opt->seed = -1;
+}
+
+sh_status lmm_render_options_check(const lmm_render_options *opt,
+                                   sh_error *err) {
+  if (opt->refined && opt->mode != LMM_MODE_LMM)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "refined needs mode lmm and scheme refract-both");
+  if (opt->area_radius >= 0 && opt->mode != LMM_MODE_WHITTED)
+    return sh_error_set(err, SH_ERR_ARG, "area_radius needs mode whitted");
+  return SH_OK;
+}
+
+lmm_render_options *lmm_render_options_new(void) {
+  lmm_render_options *o = malloc(sizeof *o);
+  if (o) lmm_render_options_init(o);
+  return o;
+}
+
+void lmm_render_options_free(lmm_render_options *opt) { free(opt); }
+
+void lmm_render_options_set_callbacks(lmm_render_options *opt,
+                                      void (*progress)(void *, long, long),
+                                      void *progress_user,
+                                      volatile int *cancel) {
+  opt->progress = progress;
+  opt->progress_user = progress_user;
+  opt->cancel = cancel;
+}
+
+size_t lmm_render_stats_size(void) { return sizeof(lmm_render_stats); }
+
+/* ---- Rendering ---- */
+
+static int cancelled(const lmm_render_options *opt) {
+  return opt->cancel && *opt->cancel;
+}
+
+sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
+                     float *rgb, lmm_render_stats *stats, sh_error *err) {
+  sh_status st;
+  if (!scene || !opt || !rgb)
+    return sh_error_set(err, SH_ERR_ARG, "lmm_render: no scene, options or image");
+  if ((st = lmm_render_options_check(opt, err))) return st;
+  double start = sh_seconds();
+  sh_reference_options ro = sh_reference_defaults(scene);
+  if (opt->spp > 0) ro.spp = opt->spp;
+  if (opt->max_depth >= 0) ro.max_depth = opt->max_depth;
+  if (opt->seed >= 0) ro.seed = (uint64_t)opt->seed;
+  ro.threads = sh_reference_threads(opt->threads);
+  ro.local = opt->local;
+  ro.progress = opt->progress;
+  ro.progress_user = opt->progress_user;
+  ro.cancel = opt->cancel;
+  sh_lmm_scheme scheme = opt->scheme ? opt->scheme : scene->render.scheme;
+  if (scheme == SH_SCHEME_DEFAULT) scheme = SH_SCHEME_REFRACT_TRACE;
+  ro.refract = scheme != SH_SCHEME_STRAIGHT;
+  if (opt->refined && scheme != SH_SCHEME_REFRACT_BOTH)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "refined is a variant of the refract-both scheme");
+  if (scheme == SH_SCHEME_REFRACT_BOTH && opt->mode != LMM_MODE_LMM)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the refract-both scheme needs mode lmm: refracted "
+                        "visibility comes from the light mesh");
+  double h = opt->mesh_step > 0             ? opt->mesh_step
+             : scene->render.mesh_step > 0 ? scene->render.mesh_step
+                                           : lmm_default_step(scene);
+  double kl = opt->kl > 0 ? opt->kl : scene->render.kl > 0 ? scene->render.kl : 2.0;
+
+  sh_rt *rt = NULL;
+  lmm *method = NULL;
+  lmm_area *area = NULL;
+  sh_image img = {0};
+  sh_reference_stats rs;
+  memset(&rs, 0, sizeof rs);
+  st = sh_rt_create(scene, &rt, err);
+  if (st == SH_OK && opt->mode == LMM_MODE_LMM) {
+    lmm_options lo;
+    memset(&lo, 0, sizeof lo);
+    lo.h = h;
+    lo.kl = kl;
+    lo.scheme = scheme;
+    lo.caustic_rays = opt->caustic_rays > 0 ? opt->caustic_rays : 200000;
+    lo.volume = !opt->volume_exact;
+    lo.refined = opt->refined;
+    st = lmm_create(scene, rt, &lo, ro.threads, &method, err);
+    if (st == SH_OK) ro.hook = lmm_hook(method);
+  } else if (st == SH_OK && opt->mode == LMM_MODE_WHITTED &&
+             opt->area_radius >= 0) {
+    st = lmm_area_create(scene, rt, opt->area_radius,
+                         opt->area_samples > 0 ? opt->area_samples : 16, &area,
+                         err);
+    if (st == SH_OK) ro.hook = lmm_area_hook(area);
+  }
+  if (st == SH_OK && cancelled(opt))
+    st = sh_error_set(err, SH_ERR_CANCELLED, "rendering was cancelled");
+  ro.rt = rt;
+  if (st == SH_OK) st = sh_render_reference(scene, &ro, &img, &rs, err);
+  if (st == SH_OK)
+    memcpy(rgb, img.rgb, sizeof(float) * 3 * (size_t)img.width * img.height);
+  if (st == SH_OK && stats) {
+    memset(stats, 0, sizeof *stats);
+    stats->mode = opt->mode;
+    stats->scheme = scheme;
+    stats->width = img.width;
+    stats->height = img.height;
+    stats->spp = ro.spp;
+    stats->max_depth = ro.max_depth;
+    stats->seed = ro.seed;
+    stats->threads = rs.threads;
+    stats->render_seconds = rs.seconds;
+    stats->camera_rays = rs.camera_rays;
+    stats->closest_rays = rs.closest_rays;
+    stats->occlusion_rays = rs.occlusion_rays;
+    stats->medium_samples = rs.medium_samples;
+    if (method) {
+      stats->has_lmm = 1;
+      stats->mesh_step = h;
+      stats->kl = kl;
+      lmm_get_stats(method, &stats->lmm);
+    }
+    stats->seconds = sh_seconds() - start;
+  }
+  sh_image_free(&img);
+  lmm_free(method);
+  lmm_area_free(area);
+  sh_rt_free(rt);
+  return st;
+}
+
+/* ---- Statistics as JSON ---- */
+
+/* Integral values as JSON integers, others as reals. */
+static void num(json_t *o, const char *key, double v) {
+  if (v == floor(v) && fabs(v) < 9007199254740992.0)
+    json_object_set_new(o, key, json_integer((json_int_t)v));
+  else
+    json_object_set_new(o, key, json_real(v));
+}
+
+size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
+                             size_t size) {
+  json_t *o = json_object();
+  if (!o) return 0;
+  json_object_set_new(o, "mode", json_string(mode_names[s->mode]));
+  json_object_set_new(o, "scheme",
+                      json_string(s->scheme > 0 ? scheme_names[s->scheme - 1]
+                                                : "default"));
+  num(o, "width", s->width);
+  num(o, "height", s->height);
+  num(o, "spp", s->spp);
+  num(o, "max_depth", s->max_depth);
+  num(o, "seed", (double)s->seed);
+  num(o, "threads", s->threads);
+  num(o, "seconds", s->seconds);
+  num(o, "render_seconds", s->render_seconds);
+  num(o, "camera_rays", (double)s->camera_rays);
+  num(o, "closest_rays", (double)s->closest_rays);
+  num(o, "occlusion_rays", (double)s->occlusion_rays);
+  num(o, "medium_samples", (double)s->medium_samples);
+  if (s->has_lmm) {
+    const lmm_stats *l = &s->lmm;
+    num(o, "mesh_step", s->mesh_step);
+    num(o, "kl", s->kl);
+    num(o, "mesh_points_total", (double)l->mesh.points_total);
+    num(o, "mesh_points_computed", (double)l->mesh.points_computed);
+    num(o, "mesh_points_uncached", (double)l->mesh.points_uncached);
+    num(o, "mesh_fraction_computed",
+        l->mesh.points_total
+            ? (double)l->mesh.points_computed / l->mesh.points_total
+            : 0.0);
+    json_object_set_new(o, "mesh_storage",
+                        json_string(l->mesh.bits ? "bits" : "floats"));
+    num(o, "shaded_points", (double)l->shaded_points);
+    num(o, "empty_sets", (double)l->empty_sets);
+    num(o, "candidate_rays", (double)l->candidate_rays);
+    num(o, "volume_lookups", (double)l->volume_lookups);
+    num(o, "caustic_points", (double)l->caustic_points);
+    num(o, "caustic_seconds", l->build_seconds);
+  }
+  char *text = json_dumps(o, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+  json_decref(o);
+  if (!text) return 0;
+  size_t n = strlen(text);
+  if (buf && size > 0) {
+    size_t k = n < size - 1 ? n : size - 1;
+    memcpy(buf, text, k);
+    buf[k] = '\0';
+  }
+  free(text);
+  return n;
+}
