@@ -1,24 +1,31 @@
 """The two render engines: SHAFTS_SWEEP (gl_shafts' plane sweep) and
 SHAFTS_TRACER (lmm_tracer: the reference, Whitted or light meshes).
 
-F12 goes through final.render. The sweep's viewport keeps a ViewportWorker
-(viewport.py): view_update and view_draw send it changes and draw the
-newest finished frame as a texture with Blender's gpu module; a timer on
-Blender's main thread tags a redraw when the worker has a new frame.
+F12 goes through final.render. In the viewport each engine keeps a worker
+(viewport.py) that owns the library's objects on a thread of its own:
+view_update and view_draw send it the changes and draw its newest finished
+frame as a texture with Blender's gpu module; a timer on Blender's main
+thread tags a redraw when the worker has a new frame.
 """
 import weakref
 
 import bpy
 
 from . import final
-from .properties import sweep_options
+from .errors import describe
+from .properties import sweep_options, tracer_arguments
+
+# The tracer's viewport renders at 1/TRACER_DIVIDER of the region's size
+# (drawn scaled up), with samples per pixel 1, 2, 4... up to the setting.
+TRACER_DIVIDER = 2
 
 
-def view_of(context):
+def view_of(context, divider=1):
     """(view_matrix, projection_matrix) and (width, height) of the 3D view
-    being drawn."""
+    being drawn, the size divided by ``divider``."""
     region, rv3d = context.region, context.region_data
-    return (rv3d.view_matrix.copy(), rv3d.window_matrix.copy()), (region.width, region.height)
+    size = (max(1, region.width // divider), max(1, region.height // divider))
+    return (rv3d.view_matrix.copy(), rv3d.window_matrix.copy()), size
 
 
 def same_view(a, b):
@@ -29,10 +36,19 @@ def same_view(a, b):
     return sa == sb and va == vb and pa == pb
 
 
+def spp_steps(most):
+    """1, 2, 4, ... and then ``most``."""
+    steps, spp = [], 1
+    while spp < most:
+        steps.append(spp)
+        spp *= 2
+    return steps + [most]
+
+
 class _RedrawTimer:
     """Polls a worker from Blender's main thread (bpy.app.timers) and tags
     the engine's viewport for a redraw when a newer frame is ready; stops
-    when the engine is gone or nothing is pending."""
+    when the engine is gone or the worker is idle with its frame drawn."""
 
     def __init__(self, engine):
         self._engine = weakref.ref(engine)
@@ -46,13 +62,15 @@ class _RedrawTimer:
     def _tick(self):
         engine = self._engine()
         try:
-            if engine is None or engine._worker is None:
+            worker = None if engine is None else engine._worker
+            if worker is None:
                 self.running = False
                 return None
-            frame = engine._worker.latest()
-            if frame is not None and frame.number != engine._drawn:
+            frame = worker.latest()
+            fresh = frame is not None and frame.number != engine._drawn
+            if fresh:
                 engine.tag_redraw()
-            if engine._worker.idle() and (frame is None or frame.number == engine._drawn):
+            elif worker.idle():
                 self.running = False
                 return None
         except ReferenceError:  # Blender freed the engine
@@ -61,17 +79,17 @@ class _RedrawTimer:
         return 0.03
 
 
-class ShaftsSweepEngine(bpy.types.RenderEngine):
-    bl_idname = "SHAFTS_SWEEP"
-    bl_label = "Shafts Sweep"
-    bl_use_preview = False
-    bl_use_eevee_viewport = True
-    bl_use_shading_nodes_custom = False
+class ViewportEngine:
+    """What both engines do in the viewport; each says how to make its
+    worker (``_make_worker``), what settings need a new one
+    (``_settings``) and at which size it renders (``_divider``)."""
+    _divider = 1
 
-    def __init__(self):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
         self._worker = None
         self._exported = None
-        self._options = None
+        self._settings_seen = None
         self._view = None
         self._drawn = 0
         self._texture = None
@@ -83,16 +101,11 @@ class ShaftsSweepEngine(bpy.types.RenderEngine):
         if worker is not None:
             worker.close()
 
-    def render(self, depsgraph):
-        final.render(self, depsgraph, "sweep")
-
-    # The viewport.
     def _full_export(self, depsgraph):
         from . import convert
         view, size = self._view
         self._exported = convert.export_scene(depsgraph, view=view, size=size)
-        self._options = sweep_options(depsgraph.scene.shafts_sweep)
-        self._worker.rebuild(self._exported, self._options)
+        self._worker.rebuild(self._exported, self._settings_seen)
 
     def _send_patch(self, depsgraph):
         from . import convert
@@ -104,33 +117,35 @@ class ShaftsSweepEngine(bpy.types.RenderEngine):
             self._worker.patch(patch)
 
     def view_update(self, context, depsgraph):
-        from .viewport import ViewportWorker
         try:
-            self._view = view_of(context)
-            if self._worker is None:
-                self._worker = ViewportWorker()
+            self._view = view_of(context, self._divider)
+            settings = self._settings(depsgraph.scene)
+            if self._worker is None or settings != self._settings_seen:
+                if self._worker is not None:
+                    self._worker.close()
+                self._settings_seen = settings
+                self._worker = self._make_worker(depsgraph.scene)
                 self._timer = _RedrawTimer(self)
                 self._full_export(depsgraph)
-            elif self._worker.needs_rebuild or \
-                    sweep_options(depsgraph.scene.shafts_sweep) != self._options:
+            elif self._worker.needs_rebuild:
                 self._full_export(depsgraph)
             else:
                 self._send_patch(depsgraph)
         except Exception as e:
-            self.update_stats("", "Shafts: " + final.describe(e))
+            self.update_stats("", "Shafts: " + describe(e))
             return
         self._timer.start()
 
     def view_draw(self, context, depsgraph):
         if self._worker is None:
             return
-        view = view_of(context)
+        view = view_of(context, self._divider)
         if not same_view(view, self._view):
             self._view = view
             try:
                 self._send_patch(depsgraph)
             except Exception as e:
-                self.update_stats("", "Shafts: " + final.describe(e))
+                self.update_stats("", "Shafts: " + describe(e))
             self._timer.start()
         frame = self._worker.latest()
         if self._worker.error:
@@ -140,23 +155,58 @@ class ShaftsSweepEngine(bpy.types.RenderEngine):
         if frame.number != self._drawn:
             self._texture = make_texture(frame.rgb, self._pixels)
             self._drawn = frame.number
-            stats = frame.stats or {}
-            self.update_stats("", "Shafts sweep | %.0f ms | programs compiled %s"
-                              % (frame.seconds * 1000, stats.get("programs_compiled", "?")))
+            self.update_stats("", self._frame_stats(frame))
         if not self._worker.idle():
             self._timer.start()
         draw_texture(self, depsgraph.scene, self._texture, context.region)
 
 
-class ShaftsTracerEngine(bpy.types.RenderEngine):
-    bl_idname = "SHAFTS_TRACER"
-    bl_label = "Shafts Tracer"
+class ShaftsSweepEngine(ViewportEngine, bpy.types.RenderEngine):
+    bl_idname = "SHAFTS_SWEEP"
+    bl_label = "Shafts Sweep"
     bl_use_preview = False
     bl_use_eevee_viewport = True
     bl_use_shading_nodes_custom = False
 
     def render(self, depsgraph):
+        final.render(self, depsgraph, "sweep")
+
+    def _settings(self, scene):
+        return sweep_options(scene.shafts_sweep)
+
+    def _make_worker(self, scene):
+        from .viewport import SweepWorker
+        return SweepWorker(options=self._settings_seen)
+
+    def _frame_stats(self, frame):
+        stats = frame.stats or {}
+        return "Shafts sweep | %.0f ms | planes %s | programs compiled %s" % (
+            frame.seconds * 1000, stats.get("planes", "?"), stats.get("programs_compiled", "?"))
+
+
+class ShaftsTracerEngine(ViewportEngine, bpy.types.RenderEngine):
+    bl_idname = "SHAFTS_TRACER"
+    bl_label = "Shafts Tracer"
+    bl_use_preview = False
+    bl_use_eevee_viewport = True
+    bl_use_shading_nodes_custom = False
+    _divider = TRACER_DIVIDER
+
+    def render(self, depsgraph):
         final.render(self, depsgraph, "tracer")
+
+    def _settings(self, scene):
+        name, arguments = tracer_arguments(scene.shafts_tracer)
+        return name, arguments, scene.shafts_tracer.viewport_spp
+
+    def _make_worker(self, scene):
+        from .viewport import TracerWorker
+        name, arguments, most = self._settings_seen
+        return TracerWorker(name, arguments, spp_steps(most))
+
+    def _frame_stats(self, frame):
+        return "Shafts tracer | spp %s | %.2f s" % ((frame.stats or {}).get("spp", "?"),
+                                                    frame.seconds)
 
 
 def make_texture(rgb, cache):

@@ -10,6 +10,7 @@ failed instead of showing or saving a black image.
 import time
 
 from . import job as jobmod
+from .errors import describe, is_cancelled
 from .properties import sweep_options, tracer_arguments
 
 
@@ -34,32 +35,10 @@ def build_scene(exported):
                                   meshes=exported.meshes)
 
 
-def describe(error):
-    """One line for a report: a ShaftsError with its location, else the
-    exception's type and message."""
-    parts = []
-    where = getattr(error, "file", None)
-    if where:
-        line, column = getattr(error, "line", 0), getattr(error, "column", 0)
-        parts.append("%s:%d:%d:" % (where, line, column) if line else where + ":")
-    key = getattr(error, "key", None)
-    if key:
-        parts.append(str(key) + ":")
-    message = getattr(error, "message", None) or str(error) or type(error).__name__
-    parts.append(message)
-    if not hasattr(error, "status"):
-        parts.insert(0, type(error).__name__ + ":")
-    return " ".join(parts)
-
-
 def fail(engine, what, error):
     text = "Shafts: %s failed: %s" % (what, describe(error))
     engine.report({'ERROR'}, text)
     engine.error_set(text)
-
-
-def is_cancelled(error):
-    return getattr(error, "status", None) in ("cancelled", "SH_ERR_CANCELLED")
 
 
 def render(engine, depsgraph, kind):

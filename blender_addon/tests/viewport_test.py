@@ -18,7 +18,7 @@ import numpy as np  # noqa: E402
 from scenes import spot_in_volume_box  # noqa: E402
 from shafts_blender import convert, shafts  # noqa: E402
 from shafts_blender.properties import sweep_options  # noqa: E402
-from shafts_blender.viewport import ViewportWorker  # noqa: E402
+from shafts_blender.viewport import SweepWorker  # noqa: E402
 
 # Live (uniforms) against non-live (constants folded by the compiler):
 # relative RMS over the image.
@@ -28,6 +28,14 @@ SIZE = (64, 48)
 
 def rel_rms(a, b):
     return float(np.sqrt(np.mean((a - b) ** 2)) / max(np.sqrt(np.mean(b ** 2)), 1e-30))
+
+
+def wait_idle(worker, timeout=60.0):
+    """Until a worker has nothing queued or left to refine."""
+    import time
+    deadline = time.monotonic() + timeout
+    while not worker.idle() and time.monotonic() < deadline:
+        time.sleep(0.02)
 
 
 def fresh(exported, options, live):
@@ -45,7 +53,7 @@ def fresh(exported, options, live):
 scene = spot_in_volume_box()
 options = sweep_options(scene.shafts_sweep)
 frames = []
-worker = ViewportWorker(options=options, on_frame=lambda: frames.append(1))
+worker = SweepWorker(options=options, on_frame=lambda: frames.append(1))
 try:
     depsgraph = bpy.context.evaluated_depsgraph_get()
     exported = convert.export_scene(depsgraph, size=SIZE)
@@ -107,4 +115,33 @@ try:
 finally:
     worker.close()
 t.check(worker._scene is None and worker._renderer is None, "close frees the renderer")
+
+# The tracer's viewport refines: 1, 2, then 4 samples per pixel, the last
+# equal to a render at 4 (the reference is deterministic for a seed); a
+# change starts again from 1 sample.
+from shafts_blender.engine import spp_steps  # noqa: E402
+from shafts_blender.properties import tracer_arguments  # noqa: E402
+from shafts_blender.viewport import TracerWorker  # noqa: E402
+
+name, arguments = tracer_arguments(scene.shafts_tracer)
+spps = []
+worker = TracerWorker(name, arguments, spp_steps(4), on_frame=lambda: spps.append(worker.frame.stats["spp"]))
+try:
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    exported = convert.export_scene(depsgraph, size=SIZE)
+    worker.rebuild(exported)
+    wait_idle(worker)
+    t.check(spps == [1, 2, 4], "the tracer refines with 1, 2, 4 samples per pixel: %s" % spps)
+    s = shafts.Scene.from_json(exported.text, meshes=exported.meshes)
+    want = getattr(shafts, name)(s, **dict(arguments, spp=4))[0]
+    s.close()
+    t.check(np.array_equal(worker.frame.rgb, want), "its last frame equals a render at 4 spp")
+    spps.clear()
+    scene.camera.location.x -= 0.3
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    worker.patch(convert.export_patch(depsgraph, exported, size=SIZE))
+    wait_idle(worker)
+    t.check(spps[:1] == [1], "a camera move starts again from 1 sample: %s" % spps)
+finally:
+    worker.close()
 t.finish()
