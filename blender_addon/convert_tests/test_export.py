@@ -228,6 +228,10 @@ H.check("world box holds the camera, light and floor",
         inside(e.scene["camera"]["position"]) and inside([0, 2, 0]) and
         inside([-2, 0, -2]) and inside([2, 0, 2]))
 H.has_warning("world volume warned", e.warnings, "World", "box")
+bpy.data.objects["Bulb"].location.x = 0.5
+p = export_patch(depsgraph(), e)
+H.check("a patch keeps the World volume's box (shapes included)",
+        p is not None and p["medium"]["bounds"] == m["bounds"], p and p["medium"]["bounds"])
 parses("point light in a world volume", e)
 
 # 5. What has no counterpart: warnings, never a crash, never silence.

@@ -65,7 +65,7 @@ class _Collector:
     """Walks the depsgraph once; with_meshes=False skips shape triangles
     (for patches), reading only the medium's."""
 
-    def __init__(self, depsgraph, warnings, with_meshes=True, known=None):
+    def __init__(self, depsgraph, warnings, with_meshes=True, known=None, boxes=None):
         self.warnings = warnings
         self.known = known or {}  # object name -> its shape keys (patches)
         self.unknown = False      # a patch met an object the export did not have
@@ -75,6 +75,7 @@ class _Collector:
         self.points = []  # scene points for the World volume's box
         self.media = []   # (name, coefficients, lo, hi)
         self.object_keys = {}  # object name -> its shape keys (empty: no triangles)
+        self.boxes = dict(boxes or {})  # mesh name -> object-space (lo, hi)
         self._parts_cache = {}
         self._with_meshes = with_meshes
         for obj, m in _instances(depsgraph):
@@ -134,8 +135,13 @@ class _Collector:
                 if mname not in self.materials:
                     self.materials[mname] = mt.export_material(mat, warnings)
                 self.meshes[data] = (part.positions, part.indices)
-                p = part.positions.astype(np.float64) @ t[:3, :3].T + t[:3, 3]
-                self.points.extend([p.min(axis=0), p.max(axis=0)])
+                self.boxes[data] = (part.positions.min(axis=0), part.positions.max(axis=0))
+            # The World volume's box holds every shape's transformed bounding
+            # box, the same in a patch (which reads no triangles).
+            box = self.boxes.get(data)
+            if box is not None:
+                corners = np.array([[box[i >> k & 1][k] for k in range(3)] for i in range(8)])
+                self.points.extend(corners @ t[:3, :3].T + t[:3, 3])
             self.shapes.append({"type": "mesh", "data": data, "material": mname,
                                 "transform": coords.matrix_key(t)})
             self.shape_objects.append(obj.name)
@@ -156,10 +162,10 @@ class _Collector:
         self.media.append((obj.name, coeffs, lo, hi))
 
 
-def _build(depsgraph, view, size, with_meshes, known=None):
+def _build(depsgraph, view, size, with_meshes, known=None, boxes=None):
     warnings = Warnings()
     scene = depsgraph.scene
-    c = _Collector(depsgraph, warnings, with_meshes, known)
+    c = _Collector(depsgraph, warnings, with_meshes, known, boxes)
     camera = cam.export_camera(depsgraph, scene, warnings, view=view, size=size)
     out = {"format": "shafts-scene", "version": 1, "camera": camera,
            "background": md.export_background(scene.world, warnings),
@@ -198,7 +204,8 @@ def _build(depsgraph, view, size, with_meshes, known=None):
         warnings.add("The scene has no light the format can represent; it renders black "
                      "but for emission and the background.")
     structure = {"lights": c.light_keys, "shapes": c.shape_keys, "medium": medium_key,
-                 "objects": c.object_keys, "size": (camera["width"], camera["height"])}
+                 "objects": c.object_keys, "boxes": c.boxes,
+                 "size": (camera["width"], camera["height"])}
     return out, c, warnings, structure
 
 
@@ -238,7 +245,8 @@ def export_patch(depsgraph, previous, *, view=None, size=None):
     if _structure_edits(depsgraph, previous):
         return None
     out, c, warnings, structure = _build(depsgraph, view, size, False,
-                                         previous.structure["objects"])
+                                         previous.structure["objects"],
+                                         previous.structure["boxes"])
     old = previous.structure
     if (c.unknown or structure["lights"] != old["lights"]
             or structure["shapes"] != old["shapes"]
@@ -259,6 +267,7 @@ def export_patch(depsgraph, previous, *, view=None, size=None):
         if key in out:
             previous.scene[key] = out[key]
     structure["objects"] = previous.structure["objects"]
+    structure["boxes"] = previous.structure["boxes"]
     previous.structure = structure
     previous.warnings = list(warnings)
     previous.text = json.dumps(previous.scene)
