@@ -77,6 +77,20 @@ def volume_material(name, kind, colour=(0.8, 0.8, 0.8), density=0.1, anisotropy=
     return mat
 
 
+def world_volume(scene, density, anisotropy=0.0):
+    """A World with a black background and a Volume Scatter volume."""
+    world = bpy.data.worlds.new("World")
+    scene.world = world
+    world.use_nodes = True
+    tree = world.node_tree
+    tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
+    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
+    scatter.inputs["Density"].default_value = density
+    scatter.inputs["Anisotropy"].default_value = anisotropy
+    tree.links.new(scatter.outputs[0], tree.nodes["World Output"].inputs["Volume"])
+    return world
+
+
 def camera(scene, location, rotation_deg, lens=50.0, sensor_fit="AUTO", size=(64, 48)):
     data = bpy.data.cameras.new("Camera")
     data.lens = lens

@@ -210,14 +210,7 @@ A.camera(scene, (0, -6, 1), (90, 0, 0))
 A.light(scene, "Bulb", "POINT", 50.0, (0, 0, 2), shadow_soft_size=0.0)
 floor = A.add_object(scene, "Floor", A.plane_mesh("Floor", 4.0))
 floor.data.materials.append(A.diffuse_material("Floor", (0.5, 0.5, 0.5)))
-world = bpy.data.worlds.new("World")
-scene.world = world
-world.use_nodes = True
-tree = world.node_tree
-tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-vs = tree.nodes.new("ShaderNodeVolumeScatter")
-vs.inputs["Density"].default_value = 0.05
-tree.links.new(vs.outputs[0], tree.nodes["World Output"].inputs["Volume"])
+world = A.world_volume(scene, 0.05)
 e = export_scene(depsgraph())
 m = e.scene["medium"]
 H.near("world volume sigma_s", m["sigma_s"], [0.04] * 3)  # Color 0.8 default

@@ -10,7 +10,8 @@ import bpy
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "convert_tests"))
 import artist_scene  # noqa: E402
 from artist_scene import (add_object, camera, cube_mesh, diffuse_material,  # noqa: E402
-                          light, plane_mesh, spot_in_volume_box, volume_material)
+                          light, plane_mesh, spot_in_volume_box, volume_material,
+                          world_volume)
 
 
 def reset():
@@ -56,15 +57,7 @@ def point_in_world_volume():
                                          ring_count=12)
     ball = bpy.context.active_object
     ball.data.materials.append(diffuse_material("Ball", (0.8, 0.6, 0.2)))
-    world = bpy.data.worlds.new("World")
-    scene.world = world
-    world.use_nodes = True
-    tree = world.node_tree
-    tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
-    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
-    scatter.inputs["Density"].default_value = 0.04
-    scatter.inputs["Anisotropy"].default_value = 0.3
-    tree.links.new(scatter.outputs[0], tree.nodes["World Output"].inputs["Volume"])
+    world_volume(scene, 0.04, anisotropy=0.3)
     return scene
 
 
