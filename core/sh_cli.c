@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "sh_file.h"
+#include "sh_json_out.h"
 
 int sh_cli_int(const char *tool, const char *option, const char *text,
                long lo, long hi, long *out) {
@@ -90,12 +91,19 @@ sh_stats *sh_stats_new(void) {
   return s;
 }
 
+sh_stats *sh_stats_from_json(const char *text) {
+  json_t *o = text ? json_loads(text, 0, NULL) : NULL;
+  sh_stats *s = o && json_is_object(o) ? malloc(sizeof *s) : NULL;
+  if (!s) {
+    json_decref(o);
+    return NULL;
+  }
+  s->obj = o;
+  return s;
+}
+
 void sh_stats_num(sh_stats *s, const char *key, double value) {
-  if (!s) return;
-  if (value == floor(value) && fabs(value) < 9007199254740992.0)
-    json_object_set_new(s->obj, key, json_integer((json_int_t)value));
-  else
-    json_object_set_new(s->obj, key, json_real(value));
+  if (s) sh__json_num(s->obj, key, value);
 }
 
 void sh_stats_str(sh_stats *s, const char *key, const char *value) {
@@ -104,7 +112,7 @@ void sh_stats_str(sh_stats *s, const char *key, const char *value) {
 
 sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err) {
   if (!s) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  char *text = json_dumps(s->obj, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
+  char *text = sh__json_dumps(json_incref(s->obj));
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   size_t n = 0;
   while (text[n]) n++;

@@ -43,6 +43,9 @@ int sh_cli_report(const char *tool, const sh_error *err);
  * identifiers; values numbers or strings. */
 typedef struct sh_stats sh_stats;
 sh_stats *sh_stats_new(void);
+/* A record from a library's statistics as JSON text (lmm_render_stats_json,
+ * gs_stats_json); NULL if it is not a JSON object or out of memory. */
+sh_stats *sh_stats_from_json(const char *text);
 void sh_stats_num(sh_stats *s, const char *key, double value);
 void sh_stats_str(sh_stats *s, const char *key, const char *value);
 /* Writes the record atomically to path. */

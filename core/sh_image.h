@@ -41,6 +41,11 @@ sh_status sh_image_read_data(const char *path, sh_image *img, sh_error *err);
 sh_status sh_image_write(const char *path, const sh_image *img,
                          double exposure, sh_error *err);
 
+/* As sh_image_write, from the caller's pixels (width * height * 3 floats,
+ * rows from the top), for bindings that should not mirror sh_image. */
+sh_status sh_image_write_rgb(const char *path, int width, int height,
+                             const float *rgb, double exposure, sh_error *err);
+
 /* Bilinear look-up at texture coordinates (s, t) in [0, 1]^2, s to the right
  * and t downwards, clamped to the edge. Writes 3 floats to out. */
 void sh_image_lookup(const sh_image *img, double s, double t, float out[3]);

@@ -88,3 +88,12 @@ double sh_linear_to_srgb(double v) {
     return v * 12.92;
   return 1.055 * pow(v, 1.0 / 2.4) - 0.055;
 }
+
+sh_status sh_image_write_rgb(const char *path, int width, int height,
+                             const float *rgb, double exposure, sh_error *err) {
+  if (!rgb || width < 1 || height < 1)
+    return sh_error_set(err, SH_ERR_ARG,
+                        "sh_image_write_rgb: no pixels or a size below 1x1");
+  sh_image img = {width, height, (float *)rgb};
+  return sh_image_write(path, &img, exposure, err);
+}

@@ -417,6 +417,31 @@ sh_status sh_scene_parse_ex(const char *text, const char *name,
                       nmeshes, out, err);
 }
 
+sh_status sh_scene_parse_arrays(const char *text, const char *name,
+                                const char *base_dir, int nmeshes,
+                                const char *const *names,
+                                const float *const *positions,
+                                const int *nvertices,
+                                const int *const *indices,
+                                const int *ntriangles, sh_scene **out,
+                                sh_error *err) {
+  if (out) *out = NULL;
+  if (nmeshes < 0 || (nmeshes > 0 && (!names || !positions || !nvertices ||
+                                      !indices || !ntriangles)))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "sh_scene_parse_arrays: %d meshes and no arrays",
+                        nmeshes);
+  sh_mesh_data *m = calloc((size_t)(nmeshes ? nmeshes : 1), sizeof *m);
+  if (!m) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  for (int i = 0; i < nmeshes; i++)
+    m[i] = (sh_mesh_data){names[i], positions[i], nvertices[i], indices[i],
+                          ntriangles[i]};
+  sh_status st =
+      sh_scene_parse_ex(text, name, base_dir, m, nmeshes, out, err);
+  free(m);
+  return st;
+}
+
 sh_status sh_scene_parse(const char *text, const char *name,
                          const char *base_dir, sh_scene **out, sh_error *err) {
   return sh_scene_parse_ex(text, name, base_dir, NULL, 0, out, err);

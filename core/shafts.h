@@ -54,6 +54,18 @@ sh_status sh_scene_parse_ex(const char *text, const char *name,
                             const char *base_dir, const sh_mesh_data *meshes,
                             int nmeshes, sh_scene **out, sh_error *err);
 
+/* As sh_scene_parse_ex, with the meshes as parallel arrays (mesh i is
+ * names[i], positions[i], nvertices[i], indices[i], ntriangles[i]), for
+ * bindings that should not mirror sh_mesh_data. */
+sh_status sh_scene_parse_arrays(const char *text, const char *name,
+                                const char *base_dir, int nmeshes,
+                                const char *const *names,
+                                const float *const *positions,
+                                const int *nvertices,
+                                const int *const *indices,
+                                const int *ntriangles, sh_scene **out,
+                                sh_error *err);
+
 /* As sh_scene_parse_ex with no in-memory meshes. */
 sh_status sh_scene_parse(const char *text, const char *name,
                          const char *base_dir, sh_scene **out, sh_error *err);

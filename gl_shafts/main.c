@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gs_named.h"
 #include "gs_render.h"
 #include "sh_cli.h"
 #include "sh_file.h"
@@ -160,15 +161,17 @@ static int parse_args(int argc, char **argv, args *a) {
   return -1;
 }
 
-static void write_stats(sh_stats *s, const args *a, const gs_options *o,
-                        const gs_stats *st) {
+/* The --stats record: the frame's statistics (gs_stats_json) with the tool,
+ * the scene and the options. */
+static sh_stats *stats_record(const args *a, const gs_options *o,
+                              const gs_stats *st) {
+  size_t n = gs_stats_json(st, NULL, 0);
+  char *text = n ? malloc(n + 1) : NULL;
+  if (text) gs_stats_json(st, text, n + 1);
+  sh_stats *s = sh_stats_from_json(text);
+  free(text);
   sh_stats_str(s, "tool", TOOL);
   sh_stats_str(s, "scene", a->scene);
-  sh_stats_str(s, "backend", st->backend);
-  sh_stats_str(s, "renderer", st->renderer);
-  sh_stats_str(s, "vendor", st->vendor);
-  sh_stats_num(s, "width", st->width);
-  sh_stats_num(s, "height", st->height);
   if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
   else sh_stats_str(s, "planes_per_light", "by light kind");
   sh_stats_num(s, "lattice_u", o->lattice_u);
@@ -180,22 +183,7 @@ static void write_stats(sh_stats *s, const args *a, const gs_options *o,
   sh_stats_num(s, "jitter", o->jitter);
   sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
   sh_stats_num(s, "sub_texels", o->sub_texels);
-  sh_stats_num(s, "seconds", st->seconds);
-  sh_stats_num(s, "setup_seconds", st->setup_seconds);
-  sh_stats_num(s, "shadow_seconds", st->shadow_seconds);
-  sh_stats_num(s, "surface_seconds", st->surface_seconds);
-  sh_stats_num(s, "lattice_seconds", st->lattice_seconds);
-  sh_stats_num(s, "plane_seconds", st->plane_seconds);
-  sh_stats_num(s, "readback_seconds", st->readback_seconds);
-  sh_stats_num(s, "lights_swept", st->lights_swept);
-  sh_stats_num(s, "shadow_maps", st->shadow_maps);
-  sh_stats_num(s, "planes", (double)st->planes);
-  sh_stats_num(s, "lattice_points", (double)st->lattice_points);
-  sh_stats_num(s, "fragments", st->fragments);
-  sh_stats_num(s, "fragments_rasterized", st->fragments_rasterized);
-  sh_stats_num(s, "triangles", (double)st->triangles);
-  sh_stats_num(s, "programs_compiled", st->programs_compiled);
-  sh_stats_num(s, "programs_cached", st->programs_cached);
+  return s;
 }
 
 int main(int argc, char **argv) {
@@ -244,8 +232,7 @@ int main(int argc, char **argv) {
   if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else if (a.stats) {
-    sh_stats *s = sh_stats_new();
-    write_stats(s, &a, &opt, &st);
+    sh_stats *s = stats_record(&a, &opt, &st);
     if (sh_stats_write(s, a.stats, &err) != SH_OK) rc = sh_cli_report(TOOL, &err);
     sh_stats_free(s);
   }

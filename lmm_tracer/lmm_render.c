@@ -1,22 +1,18 @@
 #include "lmm_render.h"
 
-#include <errno.h>
 #include <jansson.h>
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "lmm_area.h"
+#include "sh_json_out.h"
+#include "sh_options.h"
 #include "sh_reference.h"
 #include "sh_rt.h"
 #include "sh_time.h"
 
 /* ---- Options by name ---- */
-
-typedef enum kind { K_INT, K_LLONG, K_DOUBLE, K_BOOL, K_CHOICE } kind;
 
 static const char *const mode_names[] = {"reference", "whitted", "lmm", NULL};
 /* In the order of sh_lmm_scheme, after DEFAULT. */
@@ -24,128 +20,31 @@ static const char *const scheme_names[] = {"straight", "refract-trace",
                                            "refract-both", NULL};
 static const char *const volume_names[] = {"mesh", "exact", NULL};
 
-/* One row per option: its name, where it lives, its kind and limits (for
- * numbers: lo, hi, and whether lo is excluded), or its choices (stored as
- * the index plus `first`). */
-typedef struct option {
-  const char *name;
-  size_t offset;
-  kind kind;
-  double lo, hi;
-  int lo_open;
-  const char *const *choices;
-  int first;
-} option;
-
+/* The options by name, with their limits (sh_options.h). */
 #define OPT(field) #field, offsetof(lmm_render_options, field)
-static const option options[] = {
-    {OPT(mode), K_CHOICE, 0, 0, 0, mode_names, 0},
-    {OPT(scheme), K_CHOICE, 0, 0, 0, scheme_names, 1},
-    {"volume", offsetof(lmm_render_options, volume_exact), K_CHOICE, 0, 0, 0,
+static const sh__opt options[] = {
+    {OPT(mode), SH__OPT_CHOICE, 0, 0, 0, mode_names, 0},
+    {OPT(scheme), SH__OPT_CHOICE, 0, 0, 0, scheme_names, 1},
+    {"volume", offsetof(lmm_render_options, volume_exact), SH__OPT_CHOICE, 0, 0, 0,
      volume_names, 0},
-    {OPT(local), K_BOOL, 0, 1, 0, NULL, 0},
-    {OPT(refined), K_BOOL, 0, 1, 0, NULL, 0},
-    {OPT(mesh_step), K_DOUBLE, 0, INFINITY, 1, NULL, 0},
-    {OPT(kl), K_DOUBLE, 0, INFINITY, 1, NULL, 0},
-    {OPT(caustic_rays), K_LLONG, 1, 1099511627776.0, 0, NULL, 0},
-    {OPT(area_radius), K_DOUBLE, 0, INFINITY, 0, NULL, 0},
-    {OPT(area_samples), K_INT, 1, 1 << 20, 0, NULL, 0},
-    {OPT(spp), K_INT, 1, 1 << 24, 0, NULL, 0},
-    {OPT(max_depth), K_INT, 0, 64, 0, NULL, 0},
-    {OPT(seed), K_LLONG, 0, 4294967295.0, 0, NULL, 0},
-    {OPT(threads), K_INT, 0, 1024, 0, NULL, 0},
+    {OPT(local), SH__OPT_BOOL, 0, 1, 0, NULL, 0},
+    {OPT(refined), SH__OPT_BOOL, 0, 1, 0, NULL, 0},
+    {OPT(mesh_step), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0},
+    {OPT(kl), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0},
+    {OPT(caustic_rays), SH__OPT_LLONG, 1, 1099511627776.0, 0, NULL, 0},
+    {OPT(area_radius), SH__OPT_DOUBLE, 0, INFINITY, 0, NULL, 0},
+    {OPT(area_samples), SH__OPT_INT, 1, 1 << 20, 0, NULL, 0},
+    {OPT(spp), SH__OPT_INT, 1, 1 << 24, 0, NULL, 0},
+    {OPT(max_depth), SH__OPT_INT, 0, 64, 0, NULL, 0},
+    {OPT(seed), SH__OPT_LLONG, 0, 4294967295.0, 0, NULL, 0},
+    {OPT(threads), SH__OPT_INT, 0, 1024, 0, NULL, 0},
 };
 #undef OPT
 
-/* An option's error: the message, and the option's name as the key. */
-static sh_status fail(sh_error *err, const char *key, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static sh_status fail(sh_error *err, const char *key, const char *fmt, ...) {
-  char msg[SH_ERROR_MSG_MAX];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
-  va_end(ap);
-  sh_error_set(err, SH_ERR_ARG, "%s", msg);
-  if (err) snprintf(err->path, sizeof err->path, "%s", key);
-  return SH_ERR_ARG;
-}
-
-static sh_status bad_choice(const option *o, const char *value,
-                            sh_error *err) {
-  char list[200] = "";
-  size_t n = 0;
-  for (int i = 0; o->choices[i] && n < sizeof list; i++)
-    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
-                          o->choices[i]);
-  return fail(err, o->name, "unknown value '%s'; expected one of: %s", value,
-              list);
-}
-
-static sh_status set_number(const option *o, void *field, const char *value,
-                            sh_error *err) {
-  char *end = NULL;
-  errno = 0;
-  double x = strtod(value, &end);
-  int integral = o->kind != K_DOUBLE;
-  int ok = end != value && *end == '\0' && errno == 0 && isfinite(x) &&
-           (o->lo_open ? x > o->lo : x >= o->lo) && x <= o->hi &&
-           (!integral || x == floor(x));
-  if (!ok) {
-    if (integral)
-      return fail(err, o->name,
-                  "expected an integer from %.0f to %.0f, found '%s'", o->lo,
-                  o->hi, value);
-    return fail(err, o->name, "expected a number %s %g, found '%s'",
-                o->lo_open ? ">" : ">=", o->lo, value);
-  }
-  if (o->kind == K_INT)
-    *(int *)field = (int)x;
-  else if (o->kind == K_LLONG)
-    *(long long *)field = (long long)x;
-  else
-    *(double *)field = x;
-  return SH_OK;
-}
-
 sh_status lmm_render_options_set(lmm_render_options *opt, const char *key,
                                  const char *value, sh_error *err) {
-  if (!opt || !key || !value)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "lmm_render_options_set: no options, key or value");
-  for (size_t i = 0; i < sizeof options / sizeof *options; i++) {
-    const option *o = &options[i];
-    if (strcmp(o->name, key) != 0) continue;
-    void *field = (char *)opt + o->offset;
-    switch (o->kind) {
-    case K_BOOL:
-      if (!strcmp(value, "1") || !strcasecmp(value, "true"))
-        *(int *)field = 1;
-      else if (!strcmp(value, "0") || !strcasecmp(value, "false"))
-        *(int *)field = 0;
-      else
-        return fail(err, key, "expected true or false, found '%s'", value);
-      return SH_OK;
-    case K_CHOICE:
-      for (int c = 0; o->choices[c]; c++)
-        if (!strcmp(o->choices[c], value)) {
-          *(int *)field = c + o->first;
-          return SH_OK;
-        }
-      return bad_choice(o, value, err);
-    default: return set_number(o, field, value, err);
-    }
-  }
-  char list[400] = "";
-  size_t n = 0;
-  for (size_t i = 0; i < sizeof options / sizeof *options && n < sizeof list;
-       i++)
-    n += (size_t)snprintf(list + n, sizeof list - n, "%s%s", i ? ", " : "",
-                          options[i].name);
-  return fail(err, key, "unknown option '%s'; the options are: %s", key, list);
+  return sh__options_set(options, sizeof options / sizeof *options, opt, key,
+                         value, err);
 }
 
 void lmm_render_options_init(lmm_render_options *opt) {
@@ -285,14 +184,6 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
 
 /* ---- Statistics as JSON ---- */
 
-/* Integral values as JSON integers, others as reals. */
-static void num(json_t *o, const char *key, double v) {
-  if (v == floor(v) && fabs(v) < 9007199254740992.0)
-    json_object_set_new(o, key, json_integer((json_int_t)v));
-  else
-    json_object_set_new(o, key, json_real(v));
-}
-
 size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
                              size_t size) {
   json_t *o = json_object();
@@ -301,47 +192,37 @@ size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
   json_object_set_new(o, "scheme",
                       json_string(s->scheme > 0 ? scheme_names[s->scheme - 1]
                                                 : "default"));
-  num(o, "width", s->width);
-  num(o, "height", s->height);
-  num(o, "spp", s->spp);
-  num(o, "max_depth", s->max_depth);
-  num(o, "seed", (double)s->seed);
-  num(o, "threads", s->threads);
-  num(o, "seconds", s->seconds);
-  num(o, "render_seconds", s->render_seconds);
-  num(o, "camera_rays", (double)s->camera_rays);
-  num(o, "closest_rays", (double)s->closest_rays);
-  num(o, "occlusion_rays", (double)s->occlusion_rays);
-  num(o, "medium_samples", (double)s->medium_samples);
+  sh__json_num(o, "width", s->width);
+  sh__json_num(o, "height", s->height);
+  sh__json_num(o, "spp", s->spp);
+  sh__json_num(o, "max_depth", s->max_depth);
+  sh__json_num(o, "seed", (double)s->seed);
+  sh__json_num(o, "threads", s->threads);
+  sh__json_num(o, "seconds", s->seconds);
+  sh__json_num(o, "render_seconds", s->render_seconds);
+  sh__json_num(o, "camera_rays", (double)s->camera_rays);
+  sh__json_num(o, "closest_rays", (double)s->closest_rays);
+  sh__json_num(o, "occlusion_rays", (double)s->occlusion_rays);
+  sh__json_num(o, "medium_samples", (double)s->medium_samples);
   if (s->has_lmm) {
     const lmm_stats *l = &s->lmm;
-    num(o, "mesh_step", s->mesh_step);
-    num(o, "kl", s->kl);
-    num(o, "mesh_points_total", (double)l->mesh.points_total);
-    num(o, "mesh_points_computed", (double)l->mesh.points_computed);
-    num(o, "mesh_points_uncached", (double)l->mesh.points_uncached);
-    num(o, "mesh_fraction_computed",
+    sh__json_num(o, "mesh_step", s->mesh_step);
+    sh__json_num(o, "kl", s->kl);
+    sh__json_num(o, "mesh_points_total", (double)l->mesh.points_total);
+    sh__json_num(o, "mesh_points_computed", (double)l->mesh.points_computed);
+    sh__json_num(o, "mesh_points_uncached", (double)l->mesh.points_uncached);
+    sh__json_num(o, "mesh_fraction_computed",
         l->mesh.points_total
             ? (double)l->mesh.points_computed / l->mesh.points_total
             : 0.0);
     json_object_set_new(o, "mesh_storage",
                         json_string(l->mesh.bits ? "bits" : "floats"));
-    num(o, "shaded_points", (double)l->shaded_points);
-    num(o, "empty_sets", (double)l->empty_sets);
-    num(o, "candidate_rays", (double)l->candidate_rays);
-    num(o, "volume_lookups", (double)l->volume_lookups);
-    num(o, "caustic_points", (double)l->caustic_points);
-    num(o, "caustic_seconds", l->build_seconds);
+    sh__json_num(o, "shaded_points", (double)l->shaded_points);
+    sh__json_num(o, "empty_sets", (double)l->empty_sets);
+    sh__json_num(o, "candidate_rays", (double)l->candidate_rays);
+    sh__json_num(o, "volume_lookups", (double)l->volume_lookups);
+    sh__json_num(o, "caustic_points", (double)l->caustic_points);
+    sh__json_num(o, "caustic_seconds", l->build_seconds);
   }
-  char *text = json_dumps(o, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
-  json_decref(o);
-  if (!text) return 0;
-  size_t n = strlen(text);
-  if (buf && size > 0) {
-    size_t k = n < size - 1 ? n : size - 1;
-    memcpy(buf, text, k);
-    buf[k] = '\0';
-  }
-  free(text);
-  return n;
+  return sh__json_dump_to(o, buf, size);
 }

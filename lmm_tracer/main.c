@@ -6,8 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <jansson.h>
-
 #include "lmm_render.h"
 #include "sh_cli.h"
 #include "sh_file.h"
@@ -150,28 +148,13 @@ static sh_status write_stats(const args *a, const lmm_render_stats *st,
                              sh_error *err) {
   size_t n = lmm_render_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
-  json_t *o = NULL;
-  sh_status status = SH_ERR_NOMEM;
-  if (text) {
-    lmm_render_stats_json(st, text, n + 1);
-    o = json_loads(text, 0, NULL);
-    free(text);
-    text = NULL;
-  }
-  if (o) {
-    json_object_set_new(o, "tool", json_string(TOOL));
-    json_object_set_new(o, "scene", json_string(a->scene));
-    text = json_dumps(o, JSON_INDENT(2) | JSON_REAL_PRECISION(10));
-    json_decref(o);
-  }
-  if (text) {
-    size_t len = strlen(text);
-    text[len] = '\n'; /* replaces the terminator; the size includes it */
-    status = sh_file_write_atomic(a->stats, text, len + 1, err);
-    free(text);
-  } else {
-    sh_error_set(err, status, "out of memory writing the statistics");
-  }
+  if (text) lmm_render_stats_json(st, text, n + 1);
+  sh_stats *s = sh_stats_from_json(text);
+  free(text);
+  sh_stats_str(s, "tool", TOOL);
+  sh_stats_str(s, "scene", a->scene);
+  sh_status status = sh_stats_write(s, a->stats, err);
+  sh_stats_free(s);
   return status;
 }
 
