@@ -89,6 +89,7 @@ class ViewportEngine:
         super().__init__(*args, **kwargs)
         self._worker = None
         self._exported = None
+        self._last_patch = None
         self._settings_seen = None
         self._view = None
         self._drawn = 0
@@ -105,6 +106,7 @@ class ViewportEngine:
         from . import convert
         view, size = self._view
         self._exported = convert.export_scene(depsgraph, view=view, size=size)
+        self._last_patch = None
         self._worker.rebuild(self._exported, self._settings_seen)
 
     def _send_patch(self, depsgraph):
@@ -113,8 +115,9 @@ class ViewportEngine:
         patch = convert.export_patch(depsgraph, self._exported, view=view, size=size)
         if patch is None:
             self._full_export(depsgraph)
-        else:
+        elif patch != self._last_patch:  # e.g. a selection: nothing to draw again
             self._worker.patch(patch)
+        self._last_patch = patch
 
     def view_update(self, context, depsgraph):
         try:
@@ -140,10 +143,13 @@ class ViewportEngine:
         if self._worker is None:
             return
         view = view_of(context, self._divider)
-        if not same_view(view, self._view):
+        if not same_view(view, self._view) or self._worker.needs_rebuild:
             self._view = view
             try:
-                self._send_patch(depsgraph)
+                if self._worker.needs_rebuild:
+                    self._full_export(depsgraph)
+                else:
+                    self._send_patch(depsgraph)
             except Exception as e:
                 self.update_stats("", "Shafts: " + describe(e))
             self._timer.start()

@@ -93,6 +93,8 @@ def render(engine, depsgraph, kind):
         from . import result
         result.fill(engine, rgb)
         engine.update_progress(1.0)
+        if kind != "sweep":
+            stats = dict(stats or {}, spp=arguments["spp"])
         engine.update_stats("", summary(kind, stats, running.seconds))
     except Exception as e:
         fail(engine, "rendering", e)

@@ -8,9 +8,10 @@ does) and saves the engines' test scene (a spot and a caster in a volume
 box, blender_addon/tests/scenes.py) as a .blend. Then with a window under
 xvfb ("shoot"), opening that file (so no splash screen): for each engine,
 the 3D viewport in Rendered shading through the camera with the engine's
-settings in the Properties editor, then F12 with the render shown in the
-main window. Each screenshot is the whole window
-(bpy.ops.screen.screenshot): OUTDIR/blender_<engine>_<viewport|render>.png.
+settings in the Properties editor (for the sweep, after moving the spot),
+then F12 with the render shown in the main window. Each screenshot is the
+whole window (bpy.ops.screen.screenshot), scaled to 75% by the shell
+script: OUTDIR/blender_<engine>_<viewport|render>.png.
 """
 import os
 import sys
@@ -67,6 +68,7 @@ def shoot(out):
     space = view.spaces.active
     space.region_3d.view_perspective = 'CAMERA'
     space.overlay.show_overlays = True  # the engine's stats line
+    space.overlay.show_cursor = False
     props = area_of(window, "PROPERTIES").spaces.active
     for engine, short in (("SHAFTS_SWEEP", "sweep"), ("SHAFTS_TRACER", "tracer")):
         scene.render.engine = engine
@@ -74,6 +76,11 @@ def shoot(out):
         space.shading.type = 'RENDERED'
         log("%s in the viewport" % engine)
         yield VIEWPORT_WAIT[engine]
+        if engine == "SHAFTS_SWEEP":
+            # A light move: the header then shows the frame it took and
+            # that it compiled no program.
+            bpy.data.objects["Spot"].location.x += 0.3
+            yield 3.0
         screenshot(window, out, short + "_viewport")
         space.shading.type = 'SOLID'
         with bpy.context.temp_override(window=window):
