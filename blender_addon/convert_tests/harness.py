@@ -4,8 +4,10 @@
 
 Each test module calls check()/near() and finally finish(), which exits 1
 if any check failed (Blender's own exit status is 0 otherwise)."""
+import json
 import math
 import os
+import subprocess
 import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -44,6 +46,52 @@ def near(what, got, want, tol=1e-5):
 def has_warning(what, warnings, *words):
     hit = [w for w in warnings if all(x in w for x in words)]
     check(what, bool(hit), "warnings: %s" % warnings)
+
+
+def scene_copy(path, work, size):
+    """A copy of a scene file in `work` rendered at `size` (w, h), its
+    relative file names made absolute."""
+    with open(path) as f:
+        scene = json.load(f)
+    scene["camera"]["width"], scene["camera"]["height"] = size
+    base = os.path.dirname(os.path.abspath(path))
+    for item in scene.get("shapes", []) + scene.get("lights", []):
+        for holder in (item, item.get("light_map", {})):
+            for key in ("file", "image"):
+                if key in holder and not os.path.isabs(holder[key]):
+                    holder[key] = os.path.join(base, holder[key])
+    out = os.path.join(work, os.path.basename(path))
+    with open(out, "w") as f:
+        json.dump(scene, f)
+    return out
+
+
+def render_radiance(build, scene_path, exr):
+    """lmm_tracer's reference image of a scene file (16 samples, seed 1),
+    as the mean of R, G, B per pixel."""
+    import bpy
+    import numpy as np
+    r = subprocess.run([os.path.join(build, "lmm_tracer", "lmm_tracer"), scene_path,
+                        "-o", exr, "--spp", "16", "--seed", "1"],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError("lmm_tracer failed on %s: %s" % (scene_path, r.stderr.strip()))
+    img = bpy.data.images.load(exr)
+    px = np.empty(len(img.pixels), dtype=np.float32)
+    img.pixels.foreach_get(px)
+    return px.reshape(-1, 4)[:, :3].mean(axis=1)
+
+
+def render_difference(build, a_path, b_path, work):
+    """(mean relative difference over the lit pixels of a, ratio of the
+    sums) of the reference images of two scene files; lit: above 1% of a's
+    largest value."""
+    import numpy as np
+    a = render_radiance(build, a_path, os.path.join(work, "a.exr"))
+    b = render_radiance(build, b_path, os.path.join(work, "b.exr"))
+    lit = a > 0.01 * a.max()
+    return (float(np.mean(np.abs(b[lit] - a[lit]) / a[lit])),
+            float(b[lit].sum() / a[lit].sum()))
 
 
 def finish():

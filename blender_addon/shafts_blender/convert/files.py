@@ -1,5 +1,6 @@
 """An Export written as files: the scene's JSON with its meshes as binary PLY
-files beside it.
+files beside it, and the light maps that exist only inside Blender as PFM
+files (NAME_map<i>.pfm).
 
     write_files(export, json_path) -> list of paths written
 
@@ -15,6 +16,8 @@ import json
 import os
 
 import numpy as np
+
+from . import cards
 
 _FACE = np.dtype([("n", "u1"), ("v", "<i4", (3,))])
 
@@ -45,8 +48,10 @@ def _write_atomic(path, data, written):
 
 
 def scene_with_files(export, json_path):
-    """The export's scene with its in-memory meshes replaced by the file
-    names write_files gives them, and {file name: mesh name}."""
+    """The export's scene with its in-memory meshes and the light maps it
+    holds only in a temporary directory (cards.py) replaced by the file
+    names write_files gives them; {file name: mesh name}; {file name:
+    temporary image path}."""
     base = os.path.splitext(os.path.basename(json_path))[0]
     scene = copy.deepcopy(export.scene)
     names = {}
@@ -57,16 +62,26 @@ def scene_with_files(export, json_path):
         if data not in names:
             names[data] = "%s_mesh%d.ply" % (base, len(names))
         shape["file"] = names[data]
-    return scene, {v: k for k, v in names.items()}
+    images = {}
+    for light in scene["lights"]:
+        lm = light.get("light_map")
+        if lm is not None and cards.is_cached(lm["image"]):
+            name = "%s_map%d.pfm" % (base, len(images))
+            images[name] = lm["image"]
+            lm["image"] = name
+    return scene, {v: k for k, v in names.items()}, images
 
 
 def write_files(export, json_path):
     """Writes the scene JSON and its PLY meshes; returns the paths."""
     json_path = os.path.abspath(json_path)
     directory = os.path.dirname(json_path)
-    scene, files = scene_with_files(export, json_path)
+    scene, files, images = scene_with_files(export, json_path)
     written = []
     try:
+        for name, src in images.items():
+            with open(src, "rb") as f:
+                _write_atomic(os.path.join(directory, name), f.read(), written)
         for name, data in files.items():
             positions, indices = export.meshes[data]
             _write_atomic(os.path.join(directory, name), _ply_bytes(positions, indices),

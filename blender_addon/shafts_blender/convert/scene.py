@@ -20,6 +20,7 @@ import json
 import numpy as np
 
 from . import camera as cam
+from . import cards as cd
 from . import coords
 from . import light as lt
 from . import material as mt
@@ -74,6 +75,7 @@ class _Collector:
         self.meshes, self.materials = {}, {}
         self.points = []  # scene points for the World volume's box
         self.media = []   # (name, coefficients, lo, hi)
+        self.cards = []   # (object name, card): light filters (cards.py)
         self.object_keys = {}  # object name -> its shape keys (empty: no triangles)
         self.boxes = dict(boxes or {})  # mesh name -> object-space (lo, hi)
         self._parts_cache = {}
@@ -101,9 +103,13 @@ class _Collector:
         surface = volume is None or mt.has_surface(volume)
         t = coords.transform(m)
         if volume is None and not getattr(obj, "visible_camera", True):
-            warnings.add("The object '%s' is hidden from camera rays (a shadow or "
-                         "light filter); the scene has no such object, so it is left "
-                         "out." % obj.name)
+            card = cd.read_card(obj, m)
+            if card is not None:
+                self.cards.append((obj.name, card))
+            else:
+                warnings.add("The object '%s' is hidden from camera rays (a shadow or "
+                             "light filter); the scene has no such object, so it is left "
+                             "out." % obj.name)
             return
         if abs(np.linalg.det(t[:3, :3])) < 1e-12:
             warnings.add("The object '%s' is scaled to zero; it is left out." % obj.name)
@@ -166,6 +172,10 @@ def _build(depsgraph, view, size, with_meshes, known=None, boxes=None):
     warnings = Warnings()
     scene = depsgraph.scene
     c = _Collector(depsgraph, warnings, with_meshes, known, boxes)
+    for name in cd.attach(c.lights, c.cards, warnings):
+        warnings.add("The object '%s' filters light for shadow rays only but fits no "
+                     "light as a light map; the scene has no such object, so it is left "
+                     "out." % name)
     camera = cam.export_camera(depsgraph, scene, warnings, view=view, size=size)
     out = {"format": "shafts-scene", "version": 1, "camera": camera,
            "background": md.export_background(scene.world, warnings),
