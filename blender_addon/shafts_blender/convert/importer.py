@@ -9,9 +9,10 @@ object: world-space triangle meshes (spheres and cylinders tessellated),
 materials as sums of closures, lights in Blender's units, light maps as
 shadow-only cards, the medium as a box with a volume material.
 
-The library is found as shafts.py finds it: an explicit path, the
+The library is shafts.py's (shafts.load_library: an explicit path, the
 environment variable SHAFTS_LIB, libshafts.so next to the package, then the
-repository's build/libshafts.so.
+repository's build/libshafts.so), its errors read through shafts.py's
+sh_error accessors.
 """
 import ctypes
 import json
@@ -20,9 +21,7 @@ import shutil
 import tempfile
 
 from . import blender_build
-
-_HERE = os.path.dirname(os.path.abspath(__file__))
-_lib = None
+from .. import shafts
 
 
 class ImportFailed(Exception):
@@ -30,44 +29,23 @@ class ImportFailed(Exception):
     library's located error (file:line:column: key: message)."""
 
 
-def library_path(path=None):
-    candidates = [path, os.environ.get("SHAFTS_LIB"),
-                  os.path.join(os.path.dirname(_HERE), "libshafts.so"),
-                  os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(_HERE))),
-                               "build", "libshafts.so")]
-    for c in candidates:
-        if c and os.path.isfile(c):
-            return c
-    raise ImportFailed("libshafts.so not found (set SHAFTS_LIB, or build the project)")
-
-
-def _library(path=None):
-    global _lib
-    if _lib is None or path is not None:
-        lib = ctypes.CDLL(library_path(path))
-        lib.se_export_file.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int,
-                                       ctypes.c_char_p, ctypes.c_void_p]
-        lib.se_export_file.restype = ctypes.c_int
-        lib.sh_error_format.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_ulong]
-        lib.sh_error_format.restype = None
-        _lib = lib
-    return _lib
-
-
 def blender_data(scene_path, directory, lib_path=None):
     """Runs the C writer on a scene file: writes scene.py, scene.json and
     the light maps into `directory` and returns the data (a dict)."""
-    lib = _library(lib_path)
-    # An sh_error is under 2 kB (core/sh_error.h); the buffer holds it
-    # without mirroring its fields, and sh_error_format reads it back.
-    err = ctypes.create_string_buffer(16384)
+    try:
+        lib = shafts.load_library(lib_path)
+    except OSError as e:
+        raise ImportFailed(str(e))
+    fn = lib.se_export_file
+    fn.restype = ctypes.c_int
+    fn.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                   ctypes.c_void_p]
     out = os.path.join(directory, "scene.py")
-    status = lib.se_export_file(os.fsencode(os.path.abspath(scene_path)), b"blender", 0,
-                                os.fsencode(out), err)
-    if status != 0:
-        msg = ctypes.create_string_buffer(4096)
-        lib.sh_error_format(err, msg, len(msg))
-        raise ImportFailed(msg.value.decode("utf-8", "replace"))
+    with shafts._Error(lib) as err:
+        code = fn(os.fsencode(os.path.abspath(scene_path)), b"blender", 0,
+                  os.fsencode(out), err.ptr)
+        if code != 0:
+            raise ImportFailed(str(err.exception(code)))
     with open(os.path.join(directory, "scene.json"), "r", encoding="utf-8") as f:
         return json.load(f)
 
