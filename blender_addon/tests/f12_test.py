@@ -45,4 +45,29 @@ for name, build in SCENES.items():
             ok = d["rel_rms"] <= limit and d["bad_values"] == 0
             t.check(ok, "%s %s: F12 equals lmm_tracer's CLI within %g (rel RMS %g, max |diff| %g)"
                     % (name, engine, limit, d["rel_rms"], d["max_abs"]))
+
+# The engines' settings reach the library as the CLIs' options of the same
+# names do.
+scene = SCENES["spot_box"]()
+t.export_files(scene, out / "settings.json")
+sweep = scene.shafts_sweep
+sweep.planes, sweep.lattice, sweep.sub_angle_deg, sweep.xi = 6, 12, 3.0, 'LATTICE'
+tracer = scene.shafts_tracer
+tracer.mode, tracer.spp, tracer.seed = 'WHITTED', SPP, 3
+for engine, cli in (
+        ("SHAFTS_SWEEP", [t.tool("gl_shafts", "gl_shafts"), "-q", "--planes", 6, "--lattice", 12, 12,
+                          "--sub-angle", 3, "--xi", "lattice"]),
+        ("SHAFTS_TRACER", [t.tool("lmm_tracer", "lmm_tracer"), "-q", "--mode", "whitted",
+                           "--spp", SPP, "--seed", 3, "--max-depth", 5])):
+    scene.render.engine = engine
+    mine, theirs = out / ("settings_%s.exr" % engine), out / ("settings_%s_cli.exr" % engine)
+    t.check(t.f12(scene, mine) == {'FINISHED'}, "%s with settings: F12" % engine)
+    t.run(*cli, out / "settings.json", "-o", theirs)
+    d = t.compare(theirs, mine, diff=str(out / ("settings_%s_diff.png" % engine)))
+    t.check(d["max_abs"] == 0 and d["lit_pixels"] > 0,
+            "%s with settings: F12 equals the CLI with the same options (max |diff| %g)"
+            % (engine, d["max_abs"]))
+    d = t.compare(out / ("spot_box_%s.exr" % engine), mine)
+    t.check(d["max_abs"] > 0, "%s: the settings changed the image (max |diff| %g from the "
+            "defaults')" % (engine, d["max_abs"]))
 t.finish()

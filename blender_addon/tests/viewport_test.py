@@ -91,7 +91,7 @@ try:
         worker.patch(patch)
         frame = worker.wait_frame(frame.number)
         if not t.check(frame is not None and worker.error is None,
-                       "%s: a new frame (%s)" % (what, worker.error)):
+                       "%s: a new frame%s" % (what, ": " + worker.error if worker.error else "")):
             break
         compiled = frame.stats.get("programs_compiled")
         t.check(compiled == 0, "%s: no program compiled (%s), %.0f ms"
