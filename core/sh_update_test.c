@@ -176,6 +176,49 @@ static void test_updates(void) {
                SH_CHANGED_SHAPES | SH_CHANGED_CAMERA | SH_CHANGED_MEDIUM);
 }
 
+/* A spot's light map without an up of its own takes the camera's up: a
+ * patched camera turns it as a fresh parse would. */
+static void test_map_follows_camera_up(void) {
+  static const char *fmt =
+      "{\"format\": \"shafts-scene\", \"version\": 1,\n"
+      " \"camera\": {\"position\": [0, 1, 6], \"look_at\": [0, 0, 0],"
+      " \"up\": %s, \"fov_y_deg\": 40, \"width\": 16, \"height\": 16},\n"
+      " \"lights\": [{\"type\": \"spot\", \"position\": [0, 3, 0],"
+      " \"direction\": [0, -1, 0.3], \"intensity\": [1, 1, 1],"
+      " \"outer_angle_deg\": 30, \"light_map\": {\"image\": "
+      "\"gobo_star.png\"}}]}";
+  const char *src = getenv("SHAFTS_SOURCE_DIR");
+  char dir[600], text[2048];
+  snprintf(dir, sizeof dir, "%s/scenes/assets", src ? src : "..");
+  sh_scene *s = NULL, *want = NULL;
+  sh_error err;
+  snprintf(text, sizeof text, fmt, "[0, 1, 0]");
+  SH_CHECK(sh_scene_parse(text, "a.json", dir, &s, &err) == SH_OK);
+  snprintf(text, sizeof text, fmt, "[1, 1, 0]");
+  SH_CHECK(sh_scene_parse(text, "b.json", dir, &want, &err) == SH_OK);
+  if (s && want) {
+    unsigned changed = 0;
+    SH_CHECK(sh_scene_update(s,
+                             "{\"camera\": {\"position\": [0, 1, 6], "
+                             "\"look_at\": [0, 0, 0], \"up\": [1, 1, 0], "
+                             "\"fov_y_deg\": 40, \"width\": 16, "
+                             "\"height\": 16}}",
+                             "p.json", &changed, &err) == SH_OK);
+    SH_CHECK(changed == (SH_CHANGED_CAMERA | SH_CHANGED_LIGHTS));
+    /* Equal but for the rounding of normalizing the unit axis again. */
+    const sh_light *a = &s->lights[0], *b = &want->lights[0];
+    SH_CHECK_NEAR(a->map_up.x, b->map_up.x, 0, 1e-15);
+    SH_CHECK_NEAR(a->map_up.y, b->map_up.y, 0, 1e-15);
+    SH_CHECK_NEAR(a->map_up.z, b->map_up.z, 0, 1e-15);
+    SH_CHECK_NEAR(a->map_right.x, b->map_right.x, 0, 1e-15);
+    SH_CHECK_NEAR(a->map_right.y, b->map_right.y, 0, 1e-15);
+    SH_CHECK_NEAR(a->map_right.z, b->map_right.z, 0, 1e-15);
+    SH_CHECK(!same_vec(s->lights[0].map_up, sh_v3(0, 0, 0)));
+  }
+  sh_scene_free(s);
+  sh_scene_free(want);
+}
+
 typedef struct bad_case {
   const char *patch;
   sh_status status;
@@ -258,6 +301,7 @@ static void test_bad(void) {
 
 int main(void) {
   test_updates();
+  test_map_follows_camera_up();
   test_bad();
   SH_TEST_DONE();
 }
