@@ -6,6 +6,7 @@
 #                               tests render with POV-Ray and Blender too)
 #   tools/bootstrap.sh --build  only what the build needs (not the GL
 #                               libraries gl_shafts loads when it renders)
+#   tools/bootstrap.sh --slurm  only Slurm and munge (tools/slurm_local.sh)
 set -eu
 
 # gl_shafts builds with the Khronos headers only (libegl-dev, libgl-dev) and
@@ -15,12 +16,16 @@ build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
   libegl-dev libgl-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
 gl_pkgs="libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6"
 peer_pkgs="povray blender xvfb xauth"
+# The validation's Slurm executor and its single-node test cluster
+# (tools/slurm_local.sh): Debian 12's slurm-wlm 22.05 without the GUI.
+slurm_pkgs="slurmctld slurmd slurm-client munge"
 
-want="$build_pkgs $gl_pkgs $peer_pkgs"
+want="$build_pkgs $gl_pkgs $peer_pkgs $slurm_pkgs"
 for arg in "$@"; do
   case "$arg" in
     --build) want="$build_pkgs" ;;
-    -h|--help) sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --slurm) want="$slurm_pkgs" ;;
+    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bootstrap: unknown option '$arg'" >&2; exit 2 ;;
   esac
 done
