@@ -3,9 +3,9 @@ pixels: one ``foreach_set`` of RGBA float32, rows from the bottom as Blender
 stores them (the library's images run from the top).
 
 The RGB -> RGBA copy moves 12-byte pixels as one item each (a structured
-view) into a buffer kept between renders of the same size: per float
-channel, numpy's strided copy and a fresh 32 MB buffer's page faults took
-28 ms of a 1920x1080 fill; this way 8 ms (tools: blender_addon/fill_bench.py).
+view) into a buffer kept between renders of the same size, instead of a
+strided copy per float channel into a fresh 33 MB array each time
+(blender_addon/fill_bench.py times each part of the fill).
 """
 import numpy as np
 
