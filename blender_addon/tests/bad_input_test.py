@@ -100,8 +100,49 @@ t.check(engine.results == 0 and not engine.errors
         and not [r for r in engine.reports if 'ERROR' in r[0]],
         "a cancel writes no result and reports no error")
 t.check(threading.active_count() == threads, "no thread left running")
-settings.spp = 2
+# Progress: the same stand-in, never breaking, records what F12 reports
+# while the tracer renders 12 tiles (about a second); its result goes to a recording pass.
+class Recording(Breaking):
+    def __init__(self):
+        super().__init__(after=1e9)
+        self.progress, self.pixels = [], None
+
+    def update_progress(self, value):
+        self.progress.append(value)
+
+    def begin_result(self, x, y, w, h):
+        engine = self
+
+        class Pass:
+            class rect:
+                @staticmethod
+                def foreach_set(values):
+                    engine.pixels = values.copy()
+
+        class Layer:
+            passes = {"Combined": Pass}
+
+        class Result:
+            layers = [Layer]
+        self.results += 1
+        return Result
+
+    def end_result(self, result, cancel=False):
+        pass
+
+
+settings.spp = 1024
 scene.render.resolution_x, scene.render.resolution_y = 64, 48
+engine = Recording()
+final.render(engine, bpy.context.evaluated_depsgraph_get(), "tracer")
+steps = engine.progress
+t.check(not engine.errors and engine.results == 1 and engine.pixels is not None
+        and engine.pixels.shape == (64 * 48, 4), "the stand-in got one 64x48 RGBA result")
+t.check(len(steps) >= 2 and steps == sorted(steps) and steps[-1] == 1.0
+        and any(0 < v < 1 for v in steps),
+        "progress is reported while rendering, rising to 1 (%d reports: %s)"
+        % (len(steps), sorted(set(round(v, 2) for v in steps))))
+settings.spp = 2
 scene.render.engine = "SHAFTS_TRACER"
 result = t.f12(scene, out / "after_cancel.exr")
 t.check(result == {'FINISHED'} and (out / "after_cancel.exr").is_file(),
