@@ -244,7 +244,9 @@ t.links.new(tn.outputs[0], t.nodes["Material Output"].inputs["Surface"])
 bpy.data.objects["Floor"].data.materials[0] = toon
 fog = bpy.data.objects["Fog"]
 fog.rotation_euler.z = math.radians(30)
+A.light(scene, "Sink", "POINT", -20.0, (0, 1, 3), shadow_soft_size=0.0)
 e = export_scene(depsgraph())
+H.has_warning("a negative light", e.warnings, "'Sink'", "negative")
 H.has_warning("area light", e.warnings, "'Panel'", "area light")
 area = next(l for l in e.scene["lights"] if l["outer_angle_deg"] == 90.0)
 H.near("area light: Cycles' axial intensity P / 4", area["intensity"], [10.0] * 3)

@@ -105,6 +105,10 @@ def export_light(obj, matrix_world, warnings):
     factor, image = _node_colour(light, what, warnings)
     colour = [float(c) * f for c, f in zip(light.color, factor)]
     energy = float(light.energy)
+    if energy < 0 or min(colour) < 0:
+        warnings.add("%s has a negative power or colour (it removes light in Cycles); "
+                     "the scene's lights cannot, so it gives none." % what)
+        energy, colour = max(energy, 0.0), [max(c, 0.0) for c in colour]
     cycles = getattr(light, "cycles", None)
     if cycles is not None and not getattr(cycles, "cast_shadow", True):
         warnings.add("%s casts no shadows in Cycles; the scene's lights always cast "

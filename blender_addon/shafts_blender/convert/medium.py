@@ -103,7 +103,10 @@ def coefficients(output_node, what, warnings):
     _walk(node, v, 1.0)
     if not v.sigma_s.any() and not v.sigma_a.any():
         return None
-    sigma_s, sigma_a = v.sigma_s, v.sigma_a
+    if (v.sigma_s < 0).any() or (v.sigma_a < 0).any():
+        warnings.add("%s has a negative density or colour; the scene's coefficients "
+                     "are clamped at 0." % what)
+    sigma_s, sigma_a = np.maximum(v.sigma_s, 0.0), np.maximum(v.sigma_a, 0.0)
     gs = sorted({round(gv, 6) for wt, gv in v.lobes if wt > 0})
     gmean = sum(gs) / len(gs) if gs else 0.0
     n = len(gs)
