@@ -164,9 +164,13 @@ static int trace(tracer *tr, sh_vec3 o, sh_vec3 d) {
   return 1;
 }
 
+/* Checked every this many rays. */
+enum { CANCEL_EVERY = 4096 };
+
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
                              const lmm_grid *grid, int64_t rays,
-                             lmm_caustics **out, sh_error *err) {
+                             volatile int *cancel, lmm_caustics **out,
+                             sh_error *err) {
   *out = NULL;
   lmm_caustics *c = calloc(1, sizeof *c);
   if (!c) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -205,6 +209,7 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
         sh_basis(dir, &t, &b);
         tr.norm = SH_PI * R * R / ((double)rays * disc);
         for (int64_t r = 0; r < rays; r++) {
+          if (cancel && r % CANCEL_EVERY == 0 && *cancel) goto cancelled;
           double u = sh_rng_next(&rng), v = sh_rng_next(&rng);
           double rad = R * sqrt(u), phi = 2 * SH_PI * v;
           sh_vec3 o = sh_madd(sh_madd(sh_madd(ctr, t, rad * cos(phi)), b,
@@ -224,6 +229,7 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
         double omega = 2 * SH_PI * (1.0 - cos_max);
         tr.norm = omega / ((double)rays * disc);
         for (int64_t r = 0; r < rays; r++) {
+          if (cancel && r % CANCEL_EVERY == 0 && *cancel) goto cancelled;
           double ct = 1.0 - sh_rng_next(&rng) * (1.0 - cos_max);
           double st = sqrt(fmax(0.0, 1.0 - ct * ct)), phi = 2 * SH_PI * sh_rng_next(&rng);
           sh_vec3 dir = sh_madd(sh_madd(sh_scale(axis, ct), t, st * cos(phi)),
@@ -238,6 +244,10 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
 nomem:
   lmm_caustics_free(c);
   return sh_error_set(err, SH_ERR_NOMEM, "out of memory for refracted paths");
+cancelled:
+  lmm_caustics_free(c);
+  return sh_error_set(err, SH_ERR_CANCELLED,
+                      "rendering was cancelled (tracing refracted paths)");
 }
 
 void lmm_caustics_free(lmm_caustics *c) {

@@ -24,10 +24,13 @@
 typedef struct lmm_caustics lmm_caustics;
 
 /* Traces `rays` rays per light and semitransparent shape and credits the
- * points of `grid` (copied). Caller frees with lmm_caustics_free. */
+ * points of `grid` (copied). Caller frees with lmm_caustics_free. When
+ * *cancel (optional) becomes non-zero the pass stops within a few thousand
+ * rays: SH_ERR_CANCELLED, nothing allocated. */
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
                              const lmm_grid *grid, int64_t rays,
-                             lmm_caustics **out, sh_error *err);
+                             volatile int *cancel, lmm_caustics **out,
+                             sh_error *err);
 void lmm_caustics_free(lmm_caustics *c);
 
 /* The refracted visibility of light `light` at grid point (i, j, k). */

@@ -236,7 +236,7 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
   if (opt->scheme == SH_SCHEME_REFRACT_BOTH && L->semi) {
     double t0 = sh_seconds();
     st = lmm_caustics_build(scene, rt, lmm_mesh_grid(L->mesh), opt->caustic_rays,
-                            &L->caustics, err);
+                            opt->cancel, &L->caustics, err);
     if (st != SH_OK) {
       lmm_free(L);
       return st;

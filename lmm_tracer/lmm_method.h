@@ -36,6 +36,8 @@ typedef struct lmm_options {
   /* refract-both: the refined variant of section 5, which replaces
    * xi(i, P) v(i, x) by V(i, x) xi(i, P) + alpha xi(P_j, P). */
   int refined;
+  /* Optional: stops the refract-both pass early (SH_ERR_CANCELLED). */
+  volatile int *cancel;
 } lmm_options;
 
 typedef struct lmm_stats {

@@ -137,6 +137,7 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
     lo.caustic_rays = opt->caustic_rays > 0 ? opt->caustic_rays : 200000;
     lo.volume = !opt->volume_exact;
     lo.refined = opt->refined;
+    lo.cancel = opt->cancel;
     st = lmm_create(scene, rt, &lo, ro.threads, &method, err);
     if (st == SH_OK) ro.hook = lmm_hook(method);
   } else if (st == SH_OK && opt->mode == LMM_MODE_WHITTED &&
