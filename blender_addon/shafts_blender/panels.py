@@ -48,55 +48,43 @@ class ShaftsPanel:
         return context.engine in cls.COMPAT_ENGINES
 
 
+def draw_groups(layout, settings, groups):
+    """Draws settings as columns: groups of (heading or None, a function of
+    the settings telling whether the group applies, or None, property
+    names)."""
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    for heading, applies, names in groups:
+        col = layout.column(heading=heading) if heading else layout.column()
+        if applies is not None:
+            col.active = applies(settings)
+        for name in names:
+            col.prop(settings, name)
+
+
 class SHAFTS_PT_sweep(ShaftsPanel, bpy.types.Panel):
     bl_label = "Plane Sweep"
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_SWEEP"}
+    GROUPS = ((None, None, ("planes", "lattice", "xi", "jitter")),
+              ("Sub-Sampling", None, ("sub_angle_deg", "sub_texels")),
+              ("Maps", None, ("shadow_map_res", "light_map_res")))
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.shafts_sweep
-        col = layout.column()
-        col.prop(settings, "planes")
-        col.prop(settings, "lattice")
-        col.prop(settings, "xi")
-        col.prop(settings, "jitter")
-        col = layout.column(heading="Sub-Sampling")
-        col.prop(settings, "sub_angle_deg")
-        col.prop(settings, "sub_texels")
-        col = layout.column(heading="Maps")
-        col.prop(settings, "shadow_map_res")
-        col.prop(settings, "light_map_res")
+        draw_groups(self.layout, context.scene.shafts_sweep, self.GROUPS)
 
 
 class SHAFTS_PT_tracer(ShaftsPanel, bpy.types.Panel):
     bl_label = "Tracer"
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_TRACER"}
+    GROUPS = ((None, None, ("mode",)),
+              (None, None, ("spp", "viewport_spp", "max_depth", "seed", "threads")),
+              (None, lambda s: s.mode != 'REFERENCE', ("scheme",)),
+              (None, lambda s: s.mode == 'LMM', ("refined", "mesh_step", "radius", "volume")))
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.shafts_tracer
-        layout.prop(settings, "mode")
-        col = layout.column()
-        col.prop(settings, "spp")
-        col.prop(settings, "viewport_spp")
-        col.prop(settings, "max_depth")
-        col.prop(settings, "seed")
-        col.prop(settings, "threads")
-        col = layout.column()
-        col.active = settings.mode != 'REFERENCE'
-        col.prop(settings, "scheme")
-        col = layout.column()
-        col.active = settings.mode == 'LMM'
-        col.prop(settings, "refined")
-        col.prop(settings, "mesh_step")
-        col.prop(settings, "radius")
-        col.prop(settings, "volume")
+        draw_groups(self.layout, context.scene.shafts_tracer, self.GROUPS)
 
 
 class SHAFTS_PT_light(ShaftsPanel, bpy.types.Panel):
@@ -108,8 +96,7 @@ class SHAFTS_PT_light(ShaftsPanel, bpy.types.Panel):
         return super().poll(context) and context.light is not None
 
     def draw(self, context):
-        self.layout.use_property_split = True
-        self.layout.prop(context.light.shafts, "soft_shadows")
+        draw_groups(self.layout, context.light.shafts, ((None, None, ("soft_shadows",)),))
 
 
 class SHAFTS_PT_material(ShaftsPanel, bpy.types.Panel):
@@ -121,11 +108,8 @@ class SHAFTS_PT_material(ShaftsPanel, bpy.types.Panel):
         return super().poll(context) and context.material is not None
 
     def draw(self, context):
-        layout = self.layout
-        layout.use_property_split = True
-        settings = context.material.shafts
-        layout.prop(settings, "casts_soft_shadows")
-        layout.prop(settings, "receives_soft_shadows")
+        draw_groups(self.layout, context.material.shafts,
+                    ((None, None, ("casts_soft_shadows", "receives_soft_shadows")),))
 
 
 classes = (SHAFTS_PT_sweep, SHAFTS_PT_tracer, SHAFTS_PT_light, SHAFTS_PT_material)
