@@ -135,14 +135,11 @@ static void test_bad(void) {
     sh_status st = sh_scene_parse_ex(text, "bad.json", NULL,
                                      k->which < 0 ? NULL : sets[k->which],
                                      k->which < 0 ? 0 : 2, &s, &err);
-    int ok = st == k->status && s == NULL &&
-             err.line == (k->column ? 11 : 0) && err.column == k->column &&
-             strcmp(err.path, k->path) == 0 &&
-             strstr(err.message, k->message) != NULL;
-    SH_CHECK(ok);
-    if (!ok)
-      fprintf(stderr, "case %zu: status %d, %d:%d '%s': %s\n", i, st,
-              err.line, err.column, err.path, err.message);
+    char what[40];
+    snprintf(what, sizeof what, "case %zu", i);
+    SH_CHECK(s == NULL &&
+             sh_test_error_is(what, st, &err, k->status, k->column ? 11 : 0,
+                              k->column, k->path, k->message));
   }
 }
 

@@ -6,6 +6,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+#include "sh_error.h"
 
 static int sh_test_failures = 0;
 static int sh_test_checks = 0;
@@ -31,6 +34,26 @@ static int sh_test_checks = 0;
               __LINE__, #a, sh__a, #b, sh__b);                              \
     }                                                                       \
   } while (0)
+
+/* Whether a call that returned `got` and filled `err` failed as expected:
+ * with `status`, at `line`:`column` (0 for none), key path `path`, and a
+ * message containing `message`. Prints what it got otherwise, under the
+ * name `what`. */
+static inline int sh_test_error_is(const char *what, sh_status got,
+                                   const sh_error *err, sh_status status,
+                                   int line, int column, const char *path,
+                                   const char *message) {
+  int ok = got == status && err->status == status && err->line == line &&
+           err->column == column && strcmp(err->path, path) == 0 &&
+           strstr(err->message, message) != NULL;
+  if (!ok)
+    fprintf(stderr,
+            "%s: got status %d at %d:%d '%s': %s\n  expected %d at %d:%d "
+            "'%s' with \"%s\"\n",
+            what, (int)got, err->line, err->column, err->path, err->message,
+            (int)status, line, column, path, message);
+  return ok;
+}
 
 /* Call at the end of main. */
 #define SH_TEST_DONE()                                                      \

@@ -285,14 +285,11 @@ static void test_bad(void) {
     unsigned changed = 999;
     sh_error err;
     sh_status st = sh_scene_update(s, k->patch, "patch.json", &changed, &err);
-    int ok = st == k->status && err.line == k->line &&
-             err.column == k->column && strcmp(err.path, k->path) == 0 &&
-             strcmp(err.file, "patch.json") == 0 &&
-             strstr(err.message, k->message) != NULL && changed == 0;
-    SH_CHECK(ok);
-    if (!ok)
-      fprintf(stderr, "case %zu: status %d, %s:%d:%d '%s': %s\n", i, st,
-              err.file, err.line, err.column, err.path, err.message);
+    char what[40];
+    snprintf(what, sizeof what, "case %zu", i);
+    SH_CHECK(sh_test_error_is(what, st, &err, k->status, k->line, k->column,
+                              k->path, k->message) &&
+             strcmp(err.file, "patch.json") == 0 && changed == 0);
     SH_CHECK(same_scene(s, orig));
   }
   sh_scene_free(s);
