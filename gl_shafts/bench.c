@@ -7,20 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
 
-/* Under valgrind --tool=callgrind --collect-atstart=no, only the timed
- * frames are measured (instruction counts are immune to other load). */
-#if defined(__has_include)
-#if __has_include(<valgrind/callgrind.h>)
-#include <valgrind/callgrind.h>
-#endif
-#endif
-#ifndef CALLGRIND_START_INSTRUMENTATION
-#define CALLGRIND_START_INSTRUMENTATION
-#define CALLGRIND_STOP_INSTRUMENTATION
-#endif
-
+#include "bench_util.h"
 #include "gs_render.h"
 #include "sh_cli.h"
 #include "sh_compare.h"
@@ -71,19 +59,6 @@ static int parse_list(const char *s, long *out, int max) {
     if (*end && *end != ',') return -1;
   }
   return n;
-}
-
-/* CPU time of the process, all threads (llvmpipe's too), in seconds. */
-static double cpu_seconds(void) {
-  struct rusage u;
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec +
-         1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-static int cmp_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
 }
 
 /* FNV-1a of a file's bytes (0 if it cannot be read): names the cached
@@ -148,16 +123,16 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
   t0 = sh_seconds();
   if (st == SH_OK) st = gs_renderer_draw(r, img.rgb, &warm, err);
   double first = sh_seconds() - t0;
-  double cpu0 = cpu_seconds();
+  double cpu0 = bench_cpu_seconds();
   CALLGRIND_START_INSTRUMENTATION;
   for (int i = 0; i < frames && st == SH_OK; i++) {
     st = gs_renderer_draw(r, img.rgb, &s[i], err);
     secs[i] = s[i].seconds;
   }
   CALLGRIND_STOP_INSTRUMENTATION;
-  double cpu = (cpu_seconds() - cpu0) / frames;
+  double cpu = (bench_cpu_seconds() - cpu0) / frames;
   if (st == SH_OK) {
-    qsort(secs, (size_t)frames, sizeof *secs, cmp_double);
+    qsort(secs, (size_t)frames, sizeof *secs, bench_cmp_double);
     double med = secs[frames / 2], best = secs[0];
     /* The split of the median frame. */
     const gs_stats *m = &s[0];

@@ -263,8 +263,7 @@ static int light_front(const sh_mat4 *m, sh_vec3 c, sh_vec3 fwd) {
 
 sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
                                int index, const gs__view *view,
-                               const gs__geometry *geom, int keep_shadow,
-                               sh_error *err) {
+                               const gs__geometry *geom, sh_error *err) {
   memset(ls, 0, sizeof *ls);
   const sh_light *l = &scene->lights[index];
   ls->light = l;
@@ -312,7 +311,7 @@ sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
   ls->shadow = GS__SHADOW_NONE;
   ls->casts = calloc((size_t)(geom->nshapes ? geom->nshapes : 1), 1);
   if (!ls->casts) nomem = 1;
-  else if ((ls->ncasters = find_casters(ls, geom, eps, &nomem)) > 0 || keep_shadow) {
+  else if (find_casters(ls, geom, eps, &nomem) > 0) {
     ls->shadow_near = 1e-4 * (size > 0 ? size : 1.0);
     if (l->type == SH_LIGHT_DIRECTIONAL) {
       ls->shadow = GS__SHADOW_2D;

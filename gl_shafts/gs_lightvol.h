@@ -42,7 +42,6 @@ typedef struct gs__light_setup {
    * may shadow the lit volume or another shape). */
   gs__shadow_kind shadow;
   unsigned char *casts;
-  int ncasters;            /* shapes with casts[i] = 1 */
   int nfaces;              /* 1, or 6 for a cube map */
   sh_mat4 face_vp[6];      /* world to clip for each face, reversed depth */
   int light_front[6];      /* 1 if triangles facing the light are front
@@ -55,14 +54,10 @@ typedef struct gs__light_setup {
 } gs__light_setup;
 
 /* Works out light `index` of the scene for the view. A scene without a
- * medium (or with sigma_s = 0) has no lit volume. With keep_shadow (live
- * programs, whose shadow switch must not follow the light's moves) a light
- * without casters keeps the shadow map of its kind, empty: lit
- * everywhere. */
+ * medium (or with sigma_s = 0) has no lit volume. */
 sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
                                int index, const gs__view *view,
-                               const gs__geometry *geom, int keep_shadow,
-                               sh_error *err);
+                               const gs__geometry *geom, sh_error *err);
 
 void gs__light_setup_free(gs__light_setup *ls);
 

@@ -2,11 +2,16 @@
 
 #include <stdio.h>
 
-/* The variant's switches. Live programs (not baked) switch only on what
- * the scene's structure fixes: the switches that values decide (the spot
- * profile's shape, a light inside the medium) are chosen at run time or
- * take their general branch, so that moving or retuning a light selects
- * the same program. */
+/* The variant's switches. Live programs (not baked) choose the spot
+ * profile's edge (hard or smooth) per fragment, so that retuning a cone
+ * selects the same program. Two switches that values decide stay, in live
+ * programs too, as choosing them per fragment costs much (llvmpipe runs
+ * both sides of a branch): the cosine exponent's class (0, 1, other: a pow
+ * per sample) and a light inside the medium's box (no clipping of the
+ * light's ray: together 12% of a live teapot frame's instructions), as
+ * does SHADOW 0 for a light without casters (gs_lightvol.h; a shadow
+ * lookup per sample doubled the stage's frame); they seldom flip, and both
+ * variants stay cached once they have. */
 static void defines(gs__params *p, const sh_scene *scene,
                     const gs__light_setup *ls, int live, const char *extra) {
   const sh_light *l = ls ? ls->light : NULL;
@@ -26,9 +31,8 @@ static void defines(gs__params *p, const sh_scene *scene,
    * other (pow). */
   int spot = l && l->type == SH_LIGHT_SPOT;
   int smooth = spot && live ? 2 : spot && l->cos_inner > l->cos_outer;
-  int expo = spot && live ? 3 : !spot || l->exponent == 0 ? 0
-             : l->exponent == 1 ? 1 : 2;
-  int inside = !live && l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
+  int expo = !spot || l->exponent == 0 ? 0 : l->exponent == 1 ? 1 : 2;
+  int inside = l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
                l->position.x >= m->bmin.x && l->position.x <= m->bmax.x &&
                l->position.y >= m->bmin.y && l->position.y <= m->bmax.y &&
                l->position.z >= m->bmin.z && l->position.z <= m->bmax.z;

@@ -23,8 +23,8 @@ typedef struct gs__frame {
  * light):
  * resets it, then appends the variant's #define lines (LIGHT_TYPE, HAS_MAP,
  * SHADOW, CONE_CLIP, PHASE, GREY_SIGMA, SPOT_SMOOTH, SPOT_EXPONENT and
- * LIGHT_INSIDE; live programs take SPOT_SMOOTH 2, SPOT_EXPONENT 3 and
- * LIGHT_INSIDE 0, which hold for any value), `extra` lines, and the
+ * LIGHT_INSIDE; live programs take SPOT_SMOOTH 2, which holds for any
+ * cone), `extra` lines, and the
  * camera's, the medium's and the
  * light's parameters (u_eye ... u_g, u_lpos ... u_shadow_near). Without a
  * medium its coefficients are 0. */

@@ -331,14 +331,11 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   /* Lights: their volumes and shadow maps. */
   for (int i = 0; i < r->nlights && st == SH_OK; i++) {
     gs__light_setup_free(&r->lights[i]);
-    st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom,
-                              o->live, err);
+    st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
     if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
-      /* A map with no caster (live programs keep one) is lit everywhere:
-       * one texel does. */
-      int res = r->lights[i].ncasters
-                    ? gs_light_shadow_map_res(o, scene->lights[i].type) : 1;
-      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i], res, &r->geom, err);
+      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i],
+                             gs_light_shadow_map_res(o, scene->lights[i].type),
+                             &r->geom, err);
       s.shadow_maps++;
     }
   }

@@ -79,16 +79,20 @@ typedef struct gs_options {
   int live;                 /* 0 (default): every value of the scene (camera,
                                lights, medium) is baked into the shader
                                programs as a constant, the fastest frames on
-                               llvmpipe but a program build (0.1-0.2 s) for
-                               every new set of values; 1: the values are
-                               uniforms and only structural switches (light
-                               kind, light map, shadow map kind, phase
-                               function type, spot narrower than 90
-                               degrees, the xi mode, jitter) select
-                               programs, so a renderer kept warm across
-                               scene changes (gs_renderer_sync) compiles
-                               nothing; frames cost more (docs/gl_shafts.md,
-                               "Live mode") */
+                               llvmpipe but a program build (0.1-0.25 s a
+                               light) for every new set of values; 1: the
+                               values are uniforms, and only the scene's
+                               structure (light kind, light map, shadow-map
+                               kind, spot narrower than 90 degrees, phase
+                               function type, grey extinction, the xi mode,
+                               jitter) and three seldom-flipping value
+                               classes (a spot's cosine exponent 0, 1 or
+                               other; a light inside the medium's box or
+                               not; a light with shadow casters or none)
+                               select programs, so a renderer kept warm
+                               across scene changes (gs_renderer_sync)
+                               compiles nothing; frames cost more
+                               (docs/gl_shafts.md, "Live mode") */
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
@@ -169,7 +173,10 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
  * gs_options.live, the next draw builds none either unless a structural
  * switch changed (a light map added or removed, the phase function's
  * type, a spot's shadow-map kind, the medium's grey coefficients turning
- * coloured; stats.programs_compiled counts them). The scene must keep its
+ * coloured, a spot's exponent leaving its class 0, 1 or other, a light
+ * entering or leaving the medium's box, a light gaining its first shadow
+ * caster or losing its last; each builds once, after which both variants
+ * are cached; stats.programs_compiled counts them). The scene must keep its
  * number of lights and shapes (SH_ERR_ARG otherwise: make a new renderer).
  * On error the renderer must be freed. */
 sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err);

@@ -249,14 +249,25 @@ int main(void) {
     step("spot_intensity_plus_1pc", r, s, &p, SH_CHANGED_LIGHTS, 0);
     p.outer = 32;
     p.inner = 32;
-    p.exponent = 0;
-    step("spot_hard_edge_exponent_0", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    step("spot_hard_edge", r, s, &p, SH_CHANGED_LIGHTS, 0);
     p.inner = 12;
+    step("spot_cone_widened", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    /* The cosine exponent's class (0, 1, other) and a light's being inside
+     * the medium's box are switches that values flip: the first flip
+     * builds the other variant, later ones find it cached. */
     p.exponent = 2.5;
-    step("spot_cone_exponent_2.5", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    step("spot_exponent_2.5", r, s, &p, SH_CHANGED_LIGHTS, 1);
+    p.exponent = 1;
+    step("spot_exponent_back_to_1", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    p.exponent = 3.5;
+    step("spot_exponent_3.5", r, s, &p, SH_CHANGED_LIGHTS, 0);
     p.point_pos[0] = -1.5;
     p.point_pos[1] = 5; /* out of the medium's box */
-    step("point_light_leaves_the_medium", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    step("point_light_leaves_the_medium", r, s, &p, SH_CHANGED_LIGHTS, 1);
+    p.point_pos[1] = 1.5;
+    step("point_light_back_in_the_medium", r, s, &p, SH_CHANGED_LIGHTS, 0);
+    p.point_pos[1] = 5.5;
+    step("point_light_out_again", r, s, &p, SH_CHANGED_LIGHTS, 0);
     p.sun_dir[0] = 0.8;
     p.sun_dir[2] = 0.5;
     step("sun_turned", r, s, &p, SH_CHANGED_LIGHTS, 0);

@@ -12,14 +12,15 @@
 //   GREY_SIGMA  1 if sigma_t is the same in R, G and B
 //   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one; 2:
 //               either, by the values (live programs)
-//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent; 3: any, by the
-//               value (live programs)
+//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent
 //   LIGHT_INSIDE 1 if a point or spot light is inside the medium's box
 //   TAU_SUB     1 if a slab can be optically thick: sample it by optical
 //               depth (live programs always do, with a rate of 0 when no
 //               slab is thick)
-// Live programs (gs_options.live) switch only on what the scene's
-// structure fixes, so that new values select the same program.
+// Live programs (gs_options.live) switch on the scene's structure and on
+// the value classes above that are costly to choose per fragment and
+// seldom flip (SPOT_EXPONENT, LIGHT_INSIDE, SHADOW 0 for a light without
+// shadow casters), so that new values select the same program.
 // Conventions: p is a world point; z is view depth, the distance along the
 // camera's forward axis, so the pixel ray is u_eye + z * d with d the
 // unnormalised direction of view_ray (d . forward = 1).
@@ -167,8 +168,6 @@ float spot_profile(float c) {
   f *= max(c, 0.0);
 #elif SPOT_EXPONENT == 2
   f *= pow(max(c, 0.0), u_spot.z);
-#elif SPOT_EXPONENT == 3
-  f *= u_spot.z == 0.0 ? 1.0 : u_spot.z == 1.0 ? max(c, 0.0) : pow(max(c, 0.0), u_spot.z);
 #endif
   return f;
 }
@@ -210,11 +209,23 @@ vec3 light_incident(vec3 p, out vec3 wi) {
 #endif
 }
 
+// The 2D shadow map's texture coordinates and depth from the lookup
+// q = u_shadow_mat * (p, 1). A directional light's map is orthographic
+// (q.w = 1), a spot's perspective with q.z = u_shadow_near (gs_lightvol.c):
+// written so, live programs skip the products by 0 and 1 that baked ones
+// fold away (the same values, bit for bit).
+vec3 shadow_coord(vec4 q) {
+#if LIGHT_TYPE == 2
+  return q.xyz;
+#else
+  return vec3(q.xy, u_shadow_near) / q.w;
+#endif
+}
+
 // The light's visibility at p from its shadow map (1: lit).
 float shadow_at(vec3 p) {
 #if SHADOW == 1
-  vec4 q = u_shadow_mat * vec4(p, 1.0);
-  return texture(u_shadow2d, q.xyz / q.w);
+  return texture(u_shadow2d, shadow_coord(u_shadow_mat * vec4(p, 1.0)));
 #elif SHADOW == 2
   vec3 d = p - u_lpos;
   vec3 a = abs(d);

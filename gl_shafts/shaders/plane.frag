@@ -174,7 +174,7 @@ vec3 sample_at(float c, float s) {
 float vis_at(float c, float s) {
 #if SHADOW == 1
   vec4 q = g_qf + (g_h * s / c) * g_qd;
-  return texture(u_shadow2d, q.xyz / q.w);
+  return texture(u_shadow2d, shadow_coord(q));
 #elif SHADOW == 2
   vec3 wi = c * g_e - s * g_dn;
   vec3 a = abs(wi);
