@@ -317,7 +317,7 @@ class Scene(_Closable):
             self._handle = c_void_p()
 
 
-def _stats(lib, fn, buf):
+def _stats(fn, buf):
     n = fn(buf, None, 0)
     text = ctypes.create_string_buffer(n + 1)
     fn(buf, text, n + 1)
@@ -369,7 +369,7 @@ class SweepRenderer(_Closable):
         with _Error(self._lib) as err:
             err.check(self._lib.gs_renderer_draw(self._handle, rgb.ctypes.data,
                                                  self._stats, err.ptr))
-        return rgb, _stats(self._lib, self._lib.gs_stats_json, self._stats)
+        return rgb, _stats(self._lib.gs_stats_json, self._stats)
 
     def sync(self, changed):
         """Takes in the scene's changes (the bits Scene.update returned)."""
@@ -407,7 +407,7 @@ def _render(scene, settings, progress, cancel):
             rgb = np.empty((h, w, 3), dtype=np.float32)
             stats = ctypes.create_string_buffer(lib.lmm_render_stats_size())
             err.check(lib.lmm_render(scene.handle, opt, rgb.ctypes.data, stats, err.ptr))
-        return rgb, _stats(lib, lib.lmm_render_stats_json, stats)
+        return rgb, _stats(lib.lmm_render_stats_json, stats)
     finally:
         lib.lmm_render_options_free(opt)
 
