@@ -15,11 +15,6 @@ from . import final
 from .errors import describe
 from .properties import sweep_options, tracer_arguments
 
-# The tracer's viewport renders at 1/TRACER_DIVIDER of the region's size
-# (drawn scaled up), with samples per pixel 1, 2, 4... up to the setting.
-TRACER_DIVIDER = 2
-
-
 def view_of(context, divider=1):
     """(view_matrix, projection_matrix) and (width, height) of the 3D view
     being drawn, the size divided by ``divider``."""
@@ -82,8 +77,8 @@ class _RedrawTimer:
 class ViewportEngine:
     """What both engines do in the viewport; each says how to make its
     worker (``_make_worker``), what settings need a new one
-    (``_settings``) and at which size it renders (``_divider``)."""
-    _divider = 1
+    (``_settings``) and which settings hold its viewport divider
+    (``_viewport``)."""
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -121,7 +116,7 @@ class ViewportEngine:
 
     def view_update(self, context, depsgraph):
         try:
-            self._view = view_of(context, self._divider)
+            self._view = view_of(context, self._viewport(depsgraph.scene).viewport_divider)
             settings = self._settings(depsgraph.scene)
             if self._worker is None or settings != self._settings_seen:
                 if self._worker is not None:
@@ -142,7 +137,7 @@ class ViewportEngine:
     def view_draw(self, context, depsgraph):
         if self._worker is None:
             return
-        view = view_of(context, self._divider)
+        view = view_of(context, self._viewport(depsgraph.scene).viewport_divider)
         if not same_view(view, self._view) or self._worker.needs_rebuild:
             self._view = view
             try:
@@ -180,6 +175,9 @@ class ShaftsSweepEngine(ViewportEngine, bpy.types.RenderEngine):
     def _settings(self, scene):
         return sweep_options(scene.shafts_sweep)
 
+    def _viewport(self, scene):
+        return scene.shafts_sweep
+
     def _make_worker(self, scene):
         from .viewport import SweepWorker
         return SweepWorker(options=self._settings_seen)
@@ -196,10 +194,12 @@ class ShaftsTracerEngine(ViewportEngine, bpy.types.RenderEngine):
     bl_use_preview = False
     bl_use_eevee_viewport = True
     bl_use_shading_nodes_custom = False
-    _divider = TRACER_DIVIDER
 
     def render(self, depsgraph):
         final.render(self, depsgraph, "tracer")
+
+    def _viewport(self, scene):
+        return scene.shafts_tracer
 
     def _settings(self, scene):
         name, arguments = tracer_arguments(scene.shafts_tracer)

@@ -66,7 +66,7 @@ class SHAFTS_PT_sweep(ShaftsPanel, bpy.types.Panel):
     bl_label = "Plane Sweep"
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_SWEEP"}
-    GROUPS = ((None, None, ("planes", "lattice", "xi", "jitter")),
+    GROUPS = ((None, None, ("planes", "lattice", "xi", "jitter", "viewport_divider")),
               ("Sub-Sampling", None, ("sub_angle_deg", "sub_texels")),
               ("Maps", None, ("shadow_map_res", "light_map_res")))
 
@@ -79,7 +79,8 @@ class SHAFTS_PT_tracer(ShaftsPanel, bpy.types.Panel):
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_TRACER"}
     GROUPS = ((None, None, ("mode",)),
-              (None, None, ("spp", "viewport_spp", "max_depth", "seed", "threads")),
+              (None, None, ("spp", "viewport_spp", "viewport_divider", "max_depth", "seed",
+                            "threads")),
               (None, lambda s: s.mode != 'REFERENCE', ("scheme",)),
               (None, lambda s: s.mode == 'LMM', ("refined", "mesh_step", "radius", "volume")))
 

@@ -46,6 +46,9 @@ class ShaftsSweepSettings(bpy.types.PropertyGroup):
     jitter: BoolProperty(
         name="Jitter", default=False,
         description="Jitter the planes' sample depths per pixel (noise instead of banding)")
+    viewport_divider: IntProperty(
+        name="Viewport Divider", default=1, min=1, max=8,
+        description="The viewport renders at 1/N of its size, drawn scaled up")
 
 
 class ShaftsTracerSettings(bpy.types.PropertyGroup):
@@ -91,6 +94,9 @@ class ShaftsTracerSettings(bpy.types.PropertyGroup):
     viewport_spp: IntProperty(
         name="Viewport Samples", default=4, min=1, max=1000000,
         description="Viewport: the most samples progressive refinement goes up to")
+    viewport_divider: IntProperty(
+        name="Viewport Divider", default=2, min=1, max=8,
+        description="The viewport renders at 1/N of its size, drawn scaled up")
 
 
 class ShaftsLightSettings(bpy.types.PropertyGroup):

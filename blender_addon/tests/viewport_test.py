@@ -103,6 +103,19 @@ try:
         t.check(e <= NON_LIVE_MAX_REL_RMS, "%s: equals F12's renderer within %g (%g)"
                 % (what, NON_LIVE_MAX_REL_RMS, e))
 
+    # A viewport resized: the patch carries the new size.
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    bigger = (80, 60)
+    worker.patch(convert.export_patch(depsgraph, exported, size=bigger))
+    frame = worker.wait_frame(frame.number)
+    if t.check(frame is not None and frame.rgb.shape == (60, 80, 3),
+               "a resized view draws at its new size (%s)"
+               % ((frame.rgb.shape,) if frame else worker.error)):
+        t.check(frame.stats.get("programs_compiled") == 0, "a resize compiles no program")
+        t.check(np.array_equal(frame.rgb, fresh(convert.export_scene(depsgraph, size=bigger),
+                                                options, True)),
+                "the resized frame equals a fresh live renderer's")
+
     # The view of a 3D viewport looking through the camera gives its image.
     depsgraph = bpy.context.evaluated_depsgraph_get()
     cam = scene.camera
