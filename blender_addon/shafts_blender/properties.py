@@ -99,18 +99,26 @@ class ShaftsTracerSettings(bpy.types.PropertyGroup):
         description="The viewport renders at 1/N of its size, drawn scaled up")
 
 
+def _tag(settings, context):
+    """Tags the light or material for the depsgraph: the converter reads the
+    evaluated copy, which Blender would not refresh for a change of these
+    settings alone (measured: an export after the change still had the old
+    value)."""
+    settings.id_data.update_tag()
+
+
 class ShaftsLightSettings(bpy.types.PropertyGroup):
     soft_shadows: BoolProperty(
-        name="Soft Shadows", default=True,
+        name="Soft Shadows", default=True, update=_tag,
         description="Light meshes mode: this light's shadows are softened")
 
 
 class ShaftsMaterialSettings(bpy.types.PropertyGroup):
     casts_soft_shadows: BoolProperty(
-        name="Casts Soft Shadows", default=True,
+        name="Casts Soft Shadows", default=True, update=_tag,
         description="Light meshes mode: the shadow this surface casts is softened")
     receives_soft_shadows: BoolProperty(
-        name="Receives Soft Shadows", default=True,
+        name="Receives Soft Shadows", default=True, update=_tag,
         description="Light meshes mode: shadows falling on this surface are softened")
 
 

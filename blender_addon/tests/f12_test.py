@@ -8,6 +8,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import addon_test_lib as t  # noqa: E402
+import bpy  # noqa: E402
 
 t.install()
 t.require("shafts", "convert")
@@ -49,15 +50,24 @@ for name, build in SCENES.items():
 # The engines' settings reach the library as the CLIs' options of the same
 # names do.
 scene = SCENES["spot_box"]()
+bpy.data.lights["Spot"].shafts.soft_shadows = False
+bpy.data.materials["Caster"].shafts.receives_soft_shadows = False
+exported = t.export_files(scene, out / "settings.json")
+t.check(exported.scene["lights"][0].get("soft_shadows") is False
+        and any(m.get("receives_soft_shadows") is False
+                for m in exported.scene["materials"].values()),
+        "the light's and the material's soft-shadow settings are exported")
+# With the only light's shadows sharp, light meshes would render as whitted.
+bpy.data.lights["Spot"].shafts.soft_shadows = True
 t.export_files(scene, out / "settings.json")
 sweep = scene.shafts_sweep
 sweep.planes, sweep.lattice, sweep.sub_angle_deg, sweep.xi = 6, 12, 3.0, 'LATTICE'
 tracer = scene.shafts_tracer
-tracer.mode, tracer.spp, tracer.seed = 'WHITTED', SPP, 3
+tracer.mode, tracer.spp, tracer.seed = 'LMM', SPP, 3
 for engine, cli in (
         ("SHAFTS_SWEEP", [t.tool("gl_shafts", "gl_shafts"), "-q", "--planes", 6, "--lattice", 12, 12,
                           "--sub-angle", 3, "--xi", "lattice"]),
-        ("SHAFTS_TRACER", [t.tool("lmm_tracer", "lmm_tracer"), "-q", "--mode", "whitted",
+        ("SHAFTS_TRACER", [t.tool("lmm_tracer", "lmm_tracer"), "-q", "--mode", "lmm",
                            "--spp", SPP, "--seed", 3, "--max-depth", 5])):
     scene.render.engine = engine
     mine, theirs = out / ("settings_%s.exr" % engine), out / ("settings_%s_cli.exr" % engine)

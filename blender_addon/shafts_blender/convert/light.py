@@ -96,7 +96,17 @@ def _image_path(image):
 
 def export_light(obj, matrix_world, warnings):
     """The format's light object for one evaluated light instance, or None
-    if the light gives no light."""
+    if the light gives no light. The add-on's Soft Shadows setting of the
+    light (light.shafts, properties.py) gives the light meshes method's
+    "soft_shadows" key, written when off."""
+    out = _light(obj, matrix_world, warnings)
+    settings = getattr(obj.data, "shafts", None)
+    if out is not None and settings is not None and not settings.soft_shadows:
+        out["soft_shadows"] = False
+    return out
+
+
+def _light(obj, matrix_world, warnings):
     light = obj.data
     what = "The light '%s'" % obj.name
     m = coords.matrix_array(matrix_world)

@@ -216,7 +216,18 @@ def surface_output(mat):
 
 def export_material(mat, warnings):
     """The format's material object for a Blender material (None: Cycles'
-    default surface)."""
+    default surface). The add-on's soft-shadow settings of the material
+    (material.shafts, properties.py) give the light meshes method's
+    "casts_soft_shadows" and "receives_soft_shadows" keys, written when off."""
+    out = _material(mat, warnings)
+    settings = getattr(mat, "shafts", None)
+    for key in ("casts_soft_shadows", "receives_soft_shadows"):
+        if settings is not None and not getattr(settings, key):
+            out[key] = False
+    return out
+
+
+def _material(mat, warnings):
     if mat is None:
         return {"diffuse": list(DEFAULT_GREY)}
     what = "The material '%s'" % mat.name
