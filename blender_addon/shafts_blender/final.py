@@ -43,15 +43,15 @@ def fail(engine, what, error):
 
 def render(engine, depsgraph, kind):
     """The body of RenderEngine.render for kind "sweep" or "tracer"."""
-    from . import shafts
     scene = depsgraph.scene
     size = render_size(scene)
     engine.update_stats("", "Shafts: converting the scene")
     try:
+        from . import shafts  # loads libshafts.so: its failure is reported too
         exported = export(engine, depsgraph, size)
         sh_scene = build_scene(exported)
     except Exception as e:
-        fail(engine, "converting the scene", e)
+        fail(engine, "preparing the scene", e)
         return
     try:
         progress = jobmod.Progress()
