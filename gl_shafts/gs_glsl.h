@@ -13,6 +13,11 @@ extern const gs__glsl gs__glsl_shadow_vert, gs__glsl_shadow_frag;
 extern const gs__glsl gs__glsl_surface_vert, gs__glsl_surface_frag;
 extern const gs__glsl gs__glsl_screen_vert, gs__glsl_background_frag;
 extern const gs__glsl gs__glsl_interval_frag;
-extern const gs__glsl gs__glsl_plane_vert, gs__glsl_plane_frag;
+extern const gs__glsl gs__glsl_plane_vert, gs__glsl_plane_glsl;
+extern const gs__glsl gs__glsl_plane_dir_frag, gs__glsl_plane_local_frag;
+
+/* Every file, NULL-terminated: what `#include "NAME"` finds
+ * (gs_program.h). */
+extern const gs__glsl *const gs__glsl_all[];
 
 #endif

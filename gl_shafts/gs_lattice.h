@@ -4,8 +4,8 @@
  * for directional lights) evaluated on the CPU at nu x nv lattice points on
  * each plane and stored in a 3D float texture whose layers are the planes.
  * The texture holds xi r^2, the smooth part: the sweep integrates the 1/r^2
- * exactly over each plane's slab (plane.frag), which interpolation across
- * the lattice could not do near the light.
+ * exactly over each plane's slab (plane_local.frag), which interpolation
+ * across the lattice could not do near the light.
  * The lattice spans the light's screen rectangle; its layers sit at the
  * planes' slab boundaries (planes + 1 layers), or, with fewer planes than
  * lattice points a side, max(nu, nv) + 1 layers evenly over the same depths,

@@ -4,13 +4,61 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The shader's source parts: the version, the defines, common.glsl and
+ * the stage's file, whose `#include "NAME"` line (one at most) is replaced
+ * by the embedded file NAME. Returns the number of parts, or 0 with *bad
+ * set to the include line if NAME is unknown. */
+static int source_parts(const gs__glsl *src, const char *defines, const char **parts,
+                        GLint *lens, char *line_after, size_t size, const char **bad) {
+  int n = 0;
+#define ADD(s, l) (parts[n] = (s), lens[n++] = (GLint)(l))
+  ADD("#version 450 core\n", -1);
+  ADD(defines, -1);
+  ADD("\n#line 1\n", -1);
+  ADD(gs__glsl_common_glsl.text, -1);
+  ADD("\n#line 1\n", -1);
+  const char *t = src->text, *inc = strstr(t, "#include \"");
+  while (inc && inc != t && inc[-1] != '\n') inc = strstr(inc + 1, "#include \"");
+  if (!inc) {
+    ADD(t, -1);
+    return n;
+  }
+  const char *name = inc + strlen("#include \""), *quote = strchr(name, '"');
+  const char *eol = strchr(inc, '\n');
+  const gs__glsl *file = NULL;
+  for (int i = 0; quote && gs__glsl_all[i] && !file; i++)
+    if (strlen(gs__glsl_all[i]->name) == (size_t)(quote - name) &&
+        !strncmp(gs__glsl_all[i]->name, name, (size_t)(quote - name)))
+      file = gs__glsl_all[i];
+  if (!file) {
+    *bad = inc;
+    return 0;
+  }
+  int line = 1;
+  for (const char *c = t; c < inc; c++) line += *c == '\n';
+  snprintf(line_after, size, "\n#line %d\n", line + 1);
+  ADD(t, inc - t);
+  ADD(file->text, -1);
+  ADD(line_after, -1);
+  ADD(eol ? eol + 1 : "", -1);
+#undef ADD
+  return n;
+}
+
 static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
                          GLuint *out, sh_error *err) {
-  const char *parts[] = {"#version 450 core\n", defines, "\n#line 1\n",
-                         gs__glsl_common_glsl.text, "\n#line 1\n", src->text};
+  const char *parts[9], *bad = NULL;
+  GLint lens[9];
+  char line_after[32];
+  int nparts = source_parts(src, defines, parts, lens, line_after, sizeof line_after, &bad);
+  if (!nparts) {
+    const char *eol = strchr(bad, '\n');
+    return sh_error_set(err, SH_ERR_DEVICE, "the shader %s includes an unknown file: %.*s",
+                        src->name, (int)(eol ? eol - bad : (long)strlen(bad)), bad);
+  }
   GLuint sh = glCreateShader(type);
   if (!sh) return gs__gl_check("creating a shader", err);
-  glShaderSource(sh, (GLsizei)(sizeof parts / sizeof parts[0]), parts, NULL);
+  glShaderSource(sh, (GLsizei)nparts, parts, lens);
   glCompileShader(sh);
   GLint ok = 0;
   glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);

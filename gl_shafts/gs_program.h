@@ -26,7 +26,10 @@ typedef struct gs__programs {
 } gs__programs;
 
 /* The program of vertex shader vs and fragment shader fs, each compiled as
- * "#version 450 core", `defines`, common.glsl, then the stage's source;
+ * "#version 450 core", `defines`, common.glsl, then the stage's source, in
+ * which a line `#include "NAME"` (one at most, at the start of a line)
+ * stands for the embedded file NAME (plane.glsl, shared by the two plane
+ * shaders; GLSL has no #include of its own);
  * built on first use. A compile or link failure is SH_ERR_DEVICE with the
  * shader's name and the GL info log. */
 sh_status gs__program_get(gs__programs *cache, const gs__glsl *vs,

@@ -179,8 +179,9 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   gs__param_4f(p, "u_xi_xy", m[0], m[1], m[2], m[3]);
   gs__param_2f(p, "u_xi_z", m[4], m[5]);
   GLuint prog;
-  st = gs__program_use(job->frame->progs, &gs__glsl_plane_vert, &gs__glsl_plane_frag,
-                       p, &prog, err);
+  const gs__glsl *fs = l->type == SH_LIGHT_DIRECTIONAL ? &gs__glsl_plane_dir_frag
+                                                       : &gs__glsl_plane_local_frag;
+  st = gs__program_use(job->frame->progs, &gs__glsl_plane_vert, fs, p, &prog, err);
   if (st != SH_OK) return st;
   if (job->lattice) gs__lattice_bind(job->lattice);
   if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(job->shadow);

@@ -1,9 +1,5 @@
-// One virtual plane's in-scattering for one light, added to the image:
-//   power * xi * pattern * visibility * dt
-// integrated over the part of the plane's slab [z_front, z_back] that the
-// pixel's ray spends in the lit medium (the interval texture). A view depth
-// step dz is a ray length dt = dz |d|, |d| = 1 / cos(angle to the view
-// axis). xi comes from the lattice (as xi r^2) or is evaluated here.
+// The plane shader of point and spot lights (plane.glsl describes what both
+// plane shaders compute).
 //
 // For point and spot lights the part is parametrised by the angle theta it
 // subtends at the light: with h the light's distance from the ray, b the
@@ -17,116 +13,7 @@
 // plane), which is one sample in most fragments and many where the ray
 // passes near the light. This is the reference's equiangular sampling,
 // stratified by the planes.
-//
-// For a directional light with a window, the part is sampled at equal
-// steps of length, one per u_sub_texels texels of the window's pattern
-// that it crosses. In a dense medium (TAU_SUB), the transmittance changes
-// within a slab too, and every light's part gets a sample per optical depth
-// u_sub_tau / 2 (u_tau_rate = 2 sigma_t / u_sub_tau).
-flat in vec2 v_slab;
-flat in float v_plane;
-layout(binding = 3) uniform sampler2D u_interval;
-layout(binding = 4) uniform sampler3D u_xi;
-// Parameters (gs_sweep.c): u_xi_xy and u_xi_z map to the lattice texture
-// (s = ndc.x * x + y, t = ndc.y * z + w; r = z * x + y); u_inv_sub_angle
-// is 1 / the largest angle one sample stands for, u_inv_sub_texels 1 / the
-// window texels one sample stands for, u_map_size the light map's size,
-// u_tau_rate the samples per unit length a dense medium needs.
-layout(location = 0) out vec4 o_color;
-
-vec3 xi_lattice(vec2 ndc, float z) {
-  return texture(u_xi, vec3(ndc.x * u_xi_xy.x + u_xi_xy.y,
-                            ndc.y * u_xi_xy.z + u_xi_xy.w,
-                            z * u_xi_z.x + u_xi_z.y)).rgb;
-}
-
-float jitter_offset() {
-#if JITTER
-  // Interleaved gradient noise, rotated by the golden ratio from plane to
-  // plane: a stratified, per-pixel offset in [0, 1).
-  float u = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-  return fract(u + 0.618034 * v_plane);
-#else
-  return 0.5;
-#endif
-}
-
-// Bisection steps that locate a shadow's edge within a sample's step.
-#define EDGE_STEPS 5
-
-#if LIGHT_TYPE == 2
-
-// The integrand but for dt at view depth z, without the visibility:
-// xi * pattern.
-vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
-  vec3 p = u_eye + z * d;
-#if XI_EXACT
-  vec3 wi = -u_ldir;
-  vec3 v = u_sigma_s * phase(dot(wi, d) / dl) * atten(box_exit(p, wi) + (z - entry) * dl);
-#else
-  vec3 v = xi_lattice(ndc, z);
-#endif
-  return v * light_pattern(p);
-}
-
-// A directional light's visibility at view depth z, and over [a, b] with
-// its edge found by bisection where the ends differ (as for point lights).
-float vis_dir(float z, vec3 d) { return shadow_at(u_eye + z * d); }
-
-float vis_part(float a, float b, float mid, vec3 d) {
-#if SHADOW
-  float v0 = vis_dir(a, d), v1 = vis_dir(b, d);
-  float v = 0.5 * (v0 + v1);
-  if (abs(v1 - v0) > 0.5) {
-    float l = a, r = b;
-    for (int j = 0; j < EDGE_STEPS; j++) {
-      float m = 0.5 * (l + r);
-      if ((vis_dir(m, d) > 0.5) == (v0 > 0.5)) l = m; else r = m;
-    }
-    v = mix(v1, v0, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
-  }
-  return v;
-#else
-  return vis_dir(mid, d);
-#endif
-}
-
-void main() {
-  vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
-  float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
-  if (!(hi > lo)) discard;
-  vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
-  vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
-  float dl = length(d);
-  float u = jitter_offset();
-#if HAS_MAP || TAU_SUB
-  // A window's pattern: one sample per u_sub_texels texels of the light map
-  // that the part of the ray crosses (at least one per plane); in a dense
-  // medium, one per optical depth u_sub_tau / 2.
-  float k = 0.0;
-#if HAS_MAP
-  vec2 rate = vec2(dot(u_win_s.xyz, d), dot(u_win_t.xyz, d)) * u_map_size;
-  k = length(rate) * u_inv_sub_texels;
-#endif
-#if TAU_SUB
-  k = max(k, dl * u_tau_rate);
-#endif
-  int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
-  vec3 sum = vec3(0.0);
-  float w = (hi - lo) / float(n);
-  for (int i = 0; i < n; i++) {
-    float a = lo + float(i) * w, z = a + u * w;
-    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_part(a, a + w, z, d);
-  }
-  sum *= 1.0 / float(n);
-#else
-  float z = mix(lo, hi, u);
-  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_part(lo, hi, z, d);
-#endif
-  o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
-}
-
-#else
+#include "plane.glsl"
 
 // Per-fragment constants of the angle parametrisation.
 vec3 g_foot, g_e, g_dn;
@@ -301,5 +188,3 @@ void main() {
   sum *= 1.0 / float(n);
   o_color = vec4(u_lpower * sum * (dtheta / g_h), 0.0);
 }
-
-#endif

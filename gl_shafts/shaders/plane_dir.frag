@@ -1,0 +1,76 @@
+// The plane shader of directional lights (plane.glsl has what both plane
+// shaders compute): a part is sampled once at its middle (or a jittered
+// depth), or, with a window, at equal steps of length, one per
+// u_sub_texels texels of the window's pattern that it crosses, and in a
+// dense medium one per optical depth u_sub_tau / 2.
+#include "plane.glsl"
+
+// The integrand but for dt at view depth z, without the visibility:
+// xi * pattern.
+vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
+  vec3 p = u_eye + z * d;
+#if XI_EXACT
+  vec3 wi = -u_ldir;
+  vec3 v = u_sigma_s * phase(dot(wi, d) / dl) * atten(box_exit(p, wi) + (z - entry) * dl);
+#else
+  vec3 v = xi_lattice(ndc, z);
+#endif
+  return v * light_pattern(p);
+}
+
+// A directional light's visibility at view depth z, and over [a, b] with
+// its edge found by bisection where the ends differ (as for point lights).
+float vis_dir(float z, vec3 d) { return shadow_at(u_eye + z * d); }
+
+float vis_part(float a, float b, float mid, vec3 d) {
+#if SHADOW
+  float v0 = vis_dir(a, d), v1 = vis_dir(b, d);
+  float v = 0.5 * (v0 + v1);
+  if (abs(v1 - v0) > 0.5) {
+    float l = a, r = b;
+    for (int j = 0; j < EDGE_STEPS; j++) {
+      float m = 0.5 * (l + r);
+      if ((vis_dir(m, d) > 0.5) == (v0 > 0.5)) l = m; else r = m;
+    }
+    v = mix(v1, v0, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
+  }
+  return v;
+#else
+  return vis_dir(mid, d);
+#endif
+}
+
+void main() {
+  vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
+  float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
+  if (!(hi > lo)) discard;
+  vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
+  vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
+  float dl = length(d);
+  float u = jitter_offset();
+#if HAS_MAP || TAU_SUB
+  // A window's pattern: one sample per u_sub_texels texels of the light map
+  // that the part of the ray crosses (at least one per plane); in a dense
+  // medium, one per optical depth u_sub_tau / 2.
+  float k = 0.0;
+#if HAS_MAP
+  vec2 rate = vec2(dot(u_win_s.xyz, d), dot(u_win_t.xyz, d)) * u_map_size;
+  k = length(rate) * u_inv_sub_texels;
+#endif
+#if TAU_SUB
+  k = max(k, dl * u_tau_rate);
+#endif
+  int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
+  vec3 sum = vec3(0.0);
+  float w = (hi - lo) / float(n);
+  for (int i = 0; i < n; i++) {
+    float a = lo + float(i) * w, z = a + u * w;
+    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_part(a, a + w, z, d);
+  }
+  sum *= 1.0 / float(n);
+#else
+  float z = mix(lo, hi, u);
+  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_part(lo, hi, z, d);
+#endif
+  o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
+}
