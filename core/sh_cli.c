@@ -1,72 +1,463 @@
 #include "sh_cli.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <jansson.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "sh_file.h"
 #include "sh_json_out.h"
+#include "sh_parse.h"
+#include "shafts.h"
 
-int sh_cli_int(const char *tool, const char *option, const char *text,
-               long lo, long hi, long *out) {
-  char *end = NULL;
-  errno = 0;
-  long v = text ? strtol(text, &end, 10) : 0;
-  if (!text || end == text || *end || errno || v < lo || v > hi) {
-    fprintf(stderr, "%s: %s expects an integer in [%ld, %ld], got '%s'\n",
-            tool, option, lo, hi, text ? text : "(nothing)");
-    return 0;
-  }
-  *out = v;
-  return 1;
+/* ---- The option table ---- */
+
+/* getopt_long's `val` of option i: its short letter, else 256 + i. */
+static int opt_val(const sh_cli_tool *t, int i) {
+  return t->options[i].short_name ? t->options[i].short_name : 256 + i;
 }
 
-int sh_cli_double(const char *tool, const char *option, const char *text,
-                  double *out) {
-  char *end = NULL;
-  double v = text ? strtod(text, &end) : 0;
-  if (!text || end == text || *end || !isfinite(v)) {
-    fprintf(stderr, "%s: %s expects a finite number, got '%s'\n", tool,
-            option, text ? text : "(nothing)");
-    return 0;
+enum { VAL_HELP = 'h', VAL_VERSION = 1000 };
+
+static int nvalues_of(const sh_cli_option *o) {
+  switch (o->type) {
+  case SH_CLI_FLAG: return 0;
+  case SH_CLI_TEXT:
+  case SH_CLI_INT:
+  case SH_CLI_NUMBER: return o->nvalues > 0 ? o->nvalues : 1;
+  case SH_CLI_SETTER:
+    return o->fixed ? 0 : o->nvalues > 0 ? o->nvalues : 1;
+  default: return 1;
   }
-  *out = v;
-  return 1;
 }
 
-int sh_cli_operand(const char *tool, const char *arg, const char **slots[],
-                   int n) {
-  if (arg[0] == '-' && arg[1] != '\0') {
-    fprintf(stderr, "%s: unknown option '%s' (see --help)\n", tool, arg);
-    return 0;
+/* The choices of an option as "a|b|c" into buf. */
+static const char *choice_list(const sh_cli_tool *t, const sh_cli_option *o,
+                               const char *sep, char *buf, size_t size) {
+  size_t n = 0;
+  buf[0] = '\0';
+  if (o->type == SH_CLI_CHOICE) {
+    for (int i = 0; o->choices[i].name && n < size; i++)
+      n += (size_t)snprintf(buf + n, size - n, "%s%s", i ? sep : "",
+                            o->choices[i].name);
+  } else if (o->type == SH_CLI_SETTER && t->setter_choices) {
+    const char *const *c = t->setter_choices(o->key);
+    for (int i = 0; c && c[i] && n < size; i++)
+      n += (size_t)snprintf(buf + n, size - n, "%s%s", i ? sep : "", c[i]);
   }
-  for (int k = 0; k < n; k++)
-    if (!*slots[k]) {
-      *slots[k] = arg;
-      return 1;
+  return buf;
+}
+
+/* "-o, --output FILE" for the help's left column. */
+static void option_label(const sh_cli_tool *t, const sh_cli_option *o,
+                         char *buf, size_t size) {
+  char choices[256];
+  const char *meta = o->metavar;
+  if (!meta && nvalues_of(o) > 0) {
+    meta = choice_list(t, o, "|", choices, sizeof choices);
+    if (!*meta) meta = "VALUE";
+  }
+  if (o->short_name)
+    snprintf(buf, size, "-%c, --%s%s%s", o->short_name, o->name,
+             meta ? " " : "", meta ? meta : "");
+  else
+    snprintf(buf, size, "--%s%s%s", o->name, meta ? " " : "",
+             meta ? meta : "");
+}
+
+enum { HELP_COLUMN = 26, HELP_WIDTH = 79 };
+
+/* Prints text word-wrapped from column `indent` (the first line starts at
+ * column `at`). */
+static void wrap(FILE *f, const char *text, int at, int indent) {
+  int col = at;
+  const char *p = text;
+  while (*p) {
+    while (*p == ' ') p++;
+    size_t len = strcspn(p, " ");
+    if (!len) break;
+    if (col > indent && col + 1 + (int)len > HELP_WIDTH) {
+      fprintf(f, "\n%*s", indent, "");
+      col = indent;
+    } else if (col > indent) {
+      fputc(' ', f);
+      col++;
+    } else if (col < indent) {
+      fprintf(f, "%*s", indent - col, "");
+      col = indent;
     }
-  fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n", tool, arg);
+    fwrite(p, 1, len, f);
+    col += (int)len;
+    p += len;
+  }
+  fputc('\n', f);
+}
+
+void sh_cli_help_item(FILE *f, const char *label, const char *text) {
+  fprintf(f, "  %s", label);
+  int col = 2 + (int)strlen(label);
+  if (col + 2 > HELP_COLUMN) {
+    fputc('\n', f);
+    col = 0;
+  }
+  wrap(f, text ? text : "", col, HELP_COLUMN);
+}
+
+void sh_cli_help(const sh_cli_tool *t, FILE *f) {
+  fprintf(f, "usage: %s %s\n\n%s\n\noptions:\n", t->name, t->synopsis,
+          t->description);
+  for (int i = 0; i < t->noptions; i++) {
+    const sh_cli_option *o = &t->options[i];
+    char label[300], help[1024];
+    option_label(t, o, label, sizeof label);
+    snprintf(help, sizeof help, "%s%s%s%s", o->help ? o->help : "",
+             o->def ? " (default: " : "", o->def ? o->def : "",
+             o->def ? ")" : "");
+    sh_cli_help_item(f, label, help);
+  }
+  sh_cli_help_item(f, "-h, --help", "show this help and exit");
+  sh_cli_help_item(f, "--version", "print the version and exit");
+  if (t->epilogue) {
+    fputc('\n', f);
+    t->epilogue(f);
+  }
+  char status[512];
+  snprintf(status, sizeof status,
+           "Exit status: 0 on success, 1 when the work fails, 2 for bad input "
+           "(arguments, a missing or bad scene, mesh or image file)%s%s",
+           t->exit_extra ? ", " : ".", t->exit_extra ? t->exit_extra : "");
+  fputc('\n', f);
+  wrap(f, status, 0, 0);
+}
+
+/* ---- Values ---- */
+
+static int bad_value(const sh_cli_tool *t, const sh_cli_option *o,
+                     const char *text, const char *expected) {
+  fprintf(stderr, "%s: --%s expects %s, got '%s'\n", t->name, o->name,
+          expected, text);
   return 0;
 }
 
-int sh_cli_check_render_outputs(const char *tool, const char *scene,
-                                const char *const *outputs, int noutputs) {
-  if (!scene || noutputs <= 0) {
-    fprintf(stderr, "%s: need a scene file and -o OUTPUT (see --help)\n", tool);
+static int parse_int(const sh_cli_tool *t, const sh_cli_option *o,
+                     const char *text, long *out) {
+  char *end = NULL;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (end == text || *end || errno || v < o->lo || v > o->hi) {
+    char expected[96];
+    snprintf(expected, sizeof expected, "an integer in [%.0f, %.0f]", o->lo,
+             o->hi);
+    return bad_value(t, o, text, expected);
+  }
+  *out = v;
+  return 1;
+}
+
+static int parse_number(const sh_cli_tool *t, const sh_cli_option *o,
+                        const char *text, double *out) {
+  char *end = NULL;
+  double v = strtod(text, &end);
+  int in = o->lo_open ? v > o->lo : v >= o->lo;
+  if (end == text || *end || !isfinite(v) || !in || v > o->hi) {
+    char expected[96];
+    if (isinf(o->lo) && isinf(o->hi))
+      snprintf(expected, sizeof expected, "a finite number");
+    else if (isinf(o->hi))
+      snprintf(expected, sizeof expected, "a number %s %g",
+               o->lo_open ? ">" : ">=", o->lo);
+    else
+      snprintf(expected, sizeof expected, "a number in %c%g, %g]",
+               o->lo_open ? '(' : '[', o->lo, o->hi);
+    return bad_value(t, o, text, expected);
+  }
+  *out = v;
+  return 1;
+}
+
+/* Stores value k of option o; returns 0 after a message. */
+static int store(const sh_cli_tool *t, const sh_cli_option *o, int k,
+                 const char *text, void *values) {
+  void *field = (char *)values + o->offset;
+  char list[256];
+  switch (o->type) {
+  case SH_CLI_FLAG: *(int *)field = o->set; return 1;
+  case SH_CLI_TEXT:
+    if (!*text) return bad_value(t, o, text, "a name");
+    ((const char **)field)[k] = text;
+    return 1;
+  case SH_CLI_LIST: {
+    sh_cli_list *l = field;
+    if (l->count == SH_CLI_LIST_MAX) {
+      fprintf(stderr, "%s: --%s may be given at most %d times\n", t->name,
+              o->name, SH_CLI_LIST_MAX);
+      return 0;
+    }
+    l->items[l->count++] = text;
+    return 1;
+  }
+  case SH_CLI_INT: return parse_int(t, o, text, (long *)field + k);
+  case SH_CLI_NUMBER: return parse_number(t, o, text, (double *)field + k);
+  case SH_CLI_CHOICE:
+    for (int i = 0; o->choices[i].name; i++)
+      if (!strcmp(o->choices[i].name, text)) {
+        *(int *)field = o->choices[i].value;
+        return 1;
+      }
+    choice_list(t, o, ", ", list, sizeof list);
+    fprintf(stderr, "%s: --%s expects one of %s, got '%s'\n", t->name,
+            o->name, list, text);
+    return 0;
+  case SH_CLI_SETTER: break; /* setter() */
+  }
+  return 0;
+}
+
+/* A SETTER option: checks the values (joined by spaces) on the tool's
+ * scratch target and records them for sh_cli_apply. */
+static int setter(const sh_cli_tool *t, const sh_cli_option *o,
+                  const char *const *texts, int n, sh_cli_args *args) {
+  if (args->nsettings == SH_CLI_MAX_OPTIONS) return 0;
+  char *value = args->settings[args->nsettings].value;
+  size_t size = sizeof args->settings[0].value, len = 0;
+  value[0] = '\0';
+  for (int k = 0; k < n && len < size; k++)
+    len += (size_t)snprintf(value + len, size - len, "%s%s", k ? " " : "",
+                            texts[k]);
+  sh_error err;
+  if (t->setter(t->setter_target, o->key, value, &err) != SH_OK) {
+    fprintf(stderr, "%s: --%s: %s\n", t->name, o->name, err.message);
     return 0;
   }
-  for (int k = 0; k < noutputs; k++) {
+  args->settings[args->nsettings++].key = o->key;
+  return 1;
+}
+
+sh_status sh_cli_apply(const sh_cli_tool *t, const sh_cli_args *args,
+                       void *target, sh_error *err) {
+  for (int i = 0; i < args->nsettings; i++) {
+    sh_status st = t->setter(target, args->settings[i].key,
+                             args->settings[i].value, err);
+    if (st != SH_OK) return st;
+  }
+  return SH_OK;
+}
+
+/* ---- Parsing ---- */
+
+int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
+                 sh_cli_args *args) {
+  struct option longs[SH_CLI_MAX_OPTIONS + 3];
+  char shorts[3 * SH_CLI_MAX_OPTIONS + 8] = "+:h";
+  size_t ns = strlen(shorts);
+  memset(args, 0, sizeof *args);
+  if (t->noptions > SH_CLI_MAX_OPTIONS) {
+    fprintf(stderr, "%s: too many options in the tool's table\n", t->name);
+    return SH_EXIT_FAILURE;
+  }
+  for (int i = 0; i < t->noptions; i++) {
+    const sh_cli_option *o = &t->options[i];
+    longs[i] = (struct option){o->name, nvalues_of(o) ? required_argument
+                                                       : no_argument,
+                               NULL, opt_val(t, i)};
+    if (o->short_name) {
+      shorts[ns++] = (char)o->short_name;
+      if (nvalues_of(o)) shorts[ns++] = ':';
+    }
+  }
+  shorts[ns] = '\0';
+  longs[t->noptions] = (struct option){"help", no_argument, NULL, VAL_HELP};
+  longs[t->noptions + 1] =
+      (struct option){"version", no_argument, NULL, VAL_VERSION};
+  longs[t->noptions + 2] = (struct option){NULL, 0, NULL, 0};
+
+  opterr = 0;
+  optind = 1;
+  int options_done = 0;
+  while (optind < argc) {
+    int c = options_done ? -1 : getopt_long(argc, argv, shorts, longs, NULL);
+    if (c == -1) {
+      /* An operand, or the end. "--" (which getopt consumed) ends the
+       * options. */
+      if (!options_done && optind > 1 && !strcmp(argv[optind - 1], "--"))
+        options_done = 1;
+      if (optind >= argc) break;
+      if (args->noperands == SH_CLI_MAX_OPERANDS ||
+          args->noperands == t->max_operands) {
+        fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n",
+                t->name, argv[optind]);
+        return SH_EXIT_BAD_INPUT;
+      }
+      args->operands[args->noperands++] = argv[optind++];
+      continue;
+    }
+    const char *text = argv[optind - 1];
+    if (c == VAL_HELP) {
+      sh_cli_help(t, stdout);
+      return SH_EXIT_OK;
+    }
+    if (c == VAL_VERSION) {
+      printf("%s %s\n", t->name, sh_version());
+      return SH_EXIT_OK;
+    }
+    if (c == '?') {
+      if (optopt && optopt < 256)
+        fprintf(stderr, "%s: unknown option '-%c' (see --help)\n", t->name,
+                optopt);
+      else
+        fprintf(stderr, "%s: unknown option '%s' (see --help)\n", t->name,
+                text);
+      return SH_EXIT_BAD_INPUT;
+    }
+    if (c == ':') {
+      if (optopt > 0 && optopt < 256 && text[1] != '-')
+        fprintf(stderr, "%s: -%c needs a value (see --help)\n", t->name,
+                optopt);
+      else
+        fprintf(stderr, "%s: %s needs a value (see --help)\n", t->name, text);
+      return SH_EXIT_BAD_INPUT;
+    }
+    int i = 0;
+    while (i < t->noptions && opt_val(t, i) != c) i++;
+    if (i == t->noptions) return SH_EXIT_FAILURE;
+    const sh_cli_option *o = &t->options[i];
+    args->given[i] = 1;
+    int n = nvalues_of(o);
+    const char *texts[SH_CLI_MAX_VALUES] = {optarg};
+    for (int k = 1; k < n; k++) {
+      if (optind >= argc) {
+        fprintf(stderr, "%s: --%s needs %d values: %s (see --help)\n",
+                t->name, o->name, n, o->metavar ? o->metavar : "");
+        return SH_EXIT_BAD_INPUT;
+      }
+      texts[k] = argv[optind++];
+    }
+    if (o->type == SH_CLI_SETTER) {
+      if (o->fixed) texts[0] = o->fixed;
+      if (!setter(t, o, texts, o->fixed ? 1 : n, args))
+        return SH_EXIT_BAD_INPUT;
+      continue;
+    }
+    if (n == 0 && !store(t, o, 0, NULL, values)) return SH_EXIT_BAD_INPUT;
+    for (int k = 0; k < n; k++)
+      if (!store(t, o, k, texts[k], values)) return SH_EXIT_BAD_INPUT;
+  }
+  if (args->noperands < t->min_operands) {
+    fprintf(stderr, "%s: missing operand%s: usage: %s %s\n", t->name,
+            t->min_operands - args->noperands > 1 ? "s" : "", t->name,
+            t->synopsis);
+    return SH_EXIT_BAD_INPUT;
+  }
+  return -1;
+}
+
+int sh_cli_given(const sh_cli_tool *t, const sh_cli_args *args,
+                 const char *name) {
+  for (int i = 0; i < t->noptions; i++)
+    if (!strcmp(t->options[i].name, name)) return args->given[i];
+  return 0;
+}
+
+const char *sh_cli_choice_name(const sh_cli_choice *choices, int value) {
+  for (int i = 0; choices[i].name; i++)
+    if (choices[i].value == value) return choices[i].name;
+  return "?";
+}
+
+/* ---- Files ---- */
+
+/* mkdir -p: makes dir and its missing parents. */
+static int make_dirs(char *dir) {
+  for (char *p = dir + 1; *p; p++) {
+    if (*p != '/') continue;
+    *p = '\0';
+    int r = mkdir(dir, 0777);
+    *p = '/';
+    if (r && errno != EEXIST) return -1;
+  }
+  return mkdir(dir, 0777) && errno != EEXIST ? -1 : 0;
+}
+
+int sh_cli_check_output(const char *tool, const char *option,
+                        const char *path, const char *exts, int create) {
+  if (exts) {
     char ext[16];
-    sh_file_extension(outputs[k], ext, sizeof ext);
-    if (strcmp(ext, "exr") && strcmp(ext, "png")) {
-      fprintf(stderr, "%s: output '%s' must end in .exr or .png\n", tool, outputs[k]);
+    sh_file_extension(path, ext, sizeof ext);
+    size_t n = strlen(ext);
+    int ok = 0;
+    for (const char *p = exts; *p && n;) {
+      size_t len = strcspn(p, ",");
+      if (len == n && !strncmp(p, ext, n)) ok = 1;
+      p += len + (p[len] == ',');
+    }
+    if (!ok) {
+      fprintf(stderr, "%s: %s '%s' must end in .%.*s", tool, option, path,
+              (int)strcspn(exts, ","), exts);
+      for (const char *p = exts + strcspn(exts, ","); *p == ',';) {
+        p++;
+        size_t len = strcspn(p, ",");
+        fprintf(stderr, "%s.%.*s", p[len] ? ", " : " or ", (int)len, p);
+        p += len;
+      }
+      fputc('\n', stderr);
       return 0;
     }
   }
+  char dir[PATH_MAX];
+  const char *slash = strrchr(path, '/');
+  if (!slash) return 1; /* the working directory */
+  snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+  if (!*dir) return 1; /* the root */
+  struct stat sb;
+  if (stat(dir, &sb) != 0) {
+    if (create && make_dirs(dir) == 0) return 1;
+    if (create)
+      fprintf(stderr, "%s: %s: cannot make directory '%s': %s\n", tool, option,
+              dir, strerror(errno));
+    else
+      fprintf(stderr, "%s: %s: directory '%s' does not exist (-p, --parents "
+                      "makes it)\n", tool, option, dir);
+    return 0;
+  }
+  if (!S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+    fprintf(stderr, "%s: %s: '%s' is not a directory this user can write to\n",
+            tool, option, dir);
+    return 0;
+  }
   return 1;
+}
+
+int sh_cli_load_scene(const char *tool, const char *path, int quiet,
+                      sh_scene **scene) {
+  sh_error err;
+  *scene = NULL;
+  sh_status st = sh_scene_load(path, scene, &err);
+  if (st != SH_OK) {
+    sh_cli_report(tool, &err);
+    /* A scene or mesh file that is missing or unreadable is bad input. */
+    return st == SH_ERR_IO ? SH_EXIT_BAD_INPUT : sh_exit_code(st);
+  }
+  if ((*scene)->nlights == 0 && !quiet)
+    fprintf(stderr, "%s: warning: the scene has no lights; the image is "
+                    "black but for emission, ambient light and background\n",
+            tool);
+  return SH_EXIT_OK;
+}
+
+void sh_cli_resize(sh_scene *scene, long width, long height) {
+  sh_camera *cam = &scene->camera;
+  if (width > 0 && height <= 0)
+    height = lround((double)width * cam->height / cam->width);
+  else if (height > 0 && width <= 0)
+    width = lround((double)height * cam->width / cam->height);
+  if (width > 0) cam->width = (int)(width < 1 ? 1 : width);
+  if (height > 0) cam->height = (int)(height < 1 ? 1 : height);
 }
 
 int sh_cli_report(const char *tool, const sh_error *err) {
@@ -75,6 +466,20 @@ int sh_cli_report(const char *tool, const sh_error *err) {
   fprintf(stderr, "%s: error: %s\n", tool, buf);
   return sh_exit_code(err->status);
 }
+
+int sh_exit_code(sh_status status) {
+  switch (status) {
+  case SH_OK: return SH_EXIT_OK;
+  case SH_ERR_SYNTAX:
+  case SH_ERR_SCENE:
+  case SH_ERR_IMAGE:
+  case SH_ERR_MESH:
+  case SH_ERR_ARG: return SH_EXIT_BAD_INPUT;
+  default: return SH_EXIT_FAILURE;
+  }
+}
+
+/* ---- Statistics ---- */
 
 struct sh_stats {
   json_t *obj;
@@ -110,12 +515,18 @@ void sh_stats_str(sh_stats *s, const char *key, const char *value) {
   if (s) json_object_set_new(s->obj, key, json_string(value));
 }
 
+void sh_stats_merge(sh_stats *s, const sh_stats *from) {
+  if (s && from) json_object_update(s->obj, from->obj);
+}
+
+char *sh_stats_text(const sh_stats *s) {
+  return s ? json_dumps(s->obj, JSON_COMPACT | JSON_REAL_PRECISION(10)) : NULL;
+}
+
 sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err) {
-  if (!s) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  char *text = sh__json_dumps(json_incref(s->obj));
+  char *text = s ? sh__json_dumps(json_incref(s->obj)) : NULL;
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  size_t n = 0;
-  while (text[n]) n++;
+  size_t n = strlen(text);
   text[n] = '\n'; /* replaces the terminator; the size below includes it */
   sh_status st = sh_file_write_atomic(path, text, n + 1, err);
   free(text);
@@ -128,14 +539,24 @@ void sh_stats_free(sh_stats *s) {
   free(s);
 }
 
-int sh_exit_code(sh_status status) {
-  switch (status) {
-  case SH_OK: return 0;
-  case SH_ERR_SYNTAX:
-  case SH_ERR_SCENE:
-  case SH_ERR_IMAGE:
-  case SH_ERR_MESH:
-  case SH_ERR_ARG: return 2;
-  default: return 1;
-  }
+/* ---- Images with provenance ---- */
+
+sh_status sh_cli_write_images(const char *tool, const sh_cli_list *outputs,
+                              const sh_image *img, double exposure,
+                              const char *mode, const char *settings_json,
+                              const char *scene, sh_error *err) {
+  char software[128], abs_scene[PATH_MAX];
+  snprintf(software, sizeof software, "%s %s", tool, sh_version());
+  if (!realpath(scene, abs_scene)) snprintf(abs_scene, sizeof abs_scene, "%s", scene);
+  const char *attrs[] = {"Software", software,
+                         "shafts:tool", tool,
+                         "shafts:version", sh_version(),
+                         "shafts:mode", mode,
+                         "shafts:settings", settings_json ? settings_json : "{}",
+                         "shafts:scene", abs_scene,
+                         NULL};
+  sh_status st = SH_OK;
+  for (int k = 0; st == SH_OK && k < outputs->count; k++)
+    st = sh_image_write_meta(outputs->items[k], img, exposure, attrs, err);
+  return st;
 }

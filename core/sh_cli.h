@@ -1,38 +1,172 @@
-/* Helpers for the command-line tools: option values with clear errors,
- * reporting a library error, and the --stats JSON file. They print, so they
- * live in the tools' static library (shafts_cli), not in libshafts.so. */
+/* The command-line tools' shared machinery: one option table per tool, from
+ * which getopt_long's table, the parse, the --help text and the value
+ * checks all come; the exit-status table every tool follows; loading a
+ * scene and checking output paths before any work; the --stats JSON file.
+ * They print, so they live in the tools' static library (shafts_cli), not
+ * in libshafts.so.
+ *
+ * A tool describes itself once (sh_cli_tool: name, synopsis, description,
+ * options) and calls sh_cli_parse. Every tool gets -h/--help and --version
+ * from here; an unknown option, a missing value, a value out of range and
+ * a wrong number of operands each get a message naming the option or
+ * value, and exit status 2. */
 #ifndef SH_CLI_H
 #define SH_CLI_H
 
+#include <stddef.h>
+#include <stdio.h>
+
 #include "sh_error.h"
+#include "sh_image.h"
+#include "sh_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/* Parses an integer option value in [lo, hi]. On failure prints
- * "TOOL: OPTION expects an integer in [lo, hi], got 'text'" and returns 0. */
-int sh_cli_int(const char *tool, const char *option, const char *text,
-               long lo, long hi, long *out);
-/* Parses a finite number option value. */
-int sh_cli_double(const char *tool, const char *option, const char *text,
-                  double *out);
+/* The exit statuses of every tool (README.md, "Exit status"). A missing or
+ * unreadable scene, mesh or image given as input is bad input. */
+enum {
+  SH_EXIT_OK = 0,
+  SH_EXIT_FAILURE = 1,   /* the work failed: GL, memory, writing a file */
+  SH_EXIT_BAD_INPUT = 2, /* arguments, scene, mesh or image files */
+  SH_EXIT_CHECK = 3      /* a check the user asked for failed
+                            (shafts_compare --max-rel-rms) */
+};
 
-/* Takes an argument that matched no option as the next operand: it fills
- * the first of the n slots still NULL. An unknown option ("-x"; a lone "-"
- * is an operand) or one operand too many prints an error naming it and
- * returns 0; else returns 1. */
-int sh_cli_operand(const char *tool, const char *arg, const char **slots[],
-                   int n);
+/* What an option's value is and where it goes. Values are stored at
+ * `offset` bytes into the struct given to sh_cli_parse. */
+typedef enum sh_cli_type {
+  SH_CLI_FLAG,   /* no value: stores the int `set` */
+  SH_CLI_TEXT,   /* const char *[nvalues]: the text as given */
+  SH_CLI_LIST,   /* sh_cli_list: the option may be repeated */
+  SH_CLI_INT,    /* long[nvalues], each an integer in [lo, hi] */
+  SH_CLI_NUMBER, /* double[nvalues], each finite, in [lo, hi] (lo excluded
+                    if lo_open) */
+  SH_CLI_CHOICE, /* int: the value of the choice named (choices) */
+  SH_CLI_SETTER  /* the text goes to the tool's setter under `key`, which
+                    checks it (a renderer's options by name) */
+} sh_cli_type;
 
-/* Checks what a renderer's command line must give: a scene file and at
- * least one output, each ending in .exr or .png. Prints the problem and
- * returns 0, else returns 1. */
-int sh_cli_check_render_outputs(const char *tool, const char *scene,
-                                const char *const *outputs, int noutputs);
+typedef struct sh_cli_choice {
+  const char *name;
+  int value;
+} sh_cli_choice;
 
-/* The process exit status a tool should return for a status: 2 for bad
- * input (syntax, scene, image, mesh, argument errors), 1 for the rest. */
+#define SH_CLI_LIST_MAX 8
+typedef struct sh_cli_list {
+  const char *items[SH_CLI_LIST_MAX];
+  int count;
+} sh_cli_list;
+
+#define SH_CLI_MAX_VALUES 4
+
+typedef struct sh_cli_option {
+  const char *name;      /* the long name without "--" */
+  int short_name;        /* 'o' for -o, or 0 */
+  sh_cli_type type;
+  const char *metavar;   /* the value's name in --help: "N", "NU NV";
+                            NULL for flags and choices (which list them) */
+  int nvalues;           /* values the option takes (TEXT, INT, NUMBER,
+                            SETTER): 1 when 0 */
+  size_t offset;         /* where the value goes (not for SETTER) */
+  double lo, hi;         /* INT and NUMBER limits */
+  int lo_open;           /* NUMBER: lo itself is refused */
+  int set;               /* FLAG: the value stored */
+  const sh_cli_choice *choices; /* CHOICE: {NULL, 0} ends the list */
+  const char *key;       /* SETTER: the name the setter knows */
+  const char *fixed;     /* SETTER: the option takes no value and sets
+                            this text ("--jitter": "1") */
+  const char *def;       /* the default, appended to the help as
+                            "(default: DEF)", or NULL */
+  const char *help;      /* one or more sentences; wrapped by --help */
+} sh_cli_option;
+
+/* A renderer's option set by name from text (lmm_render_options_set's
+ * shape): SH_ERR_ARG with a message on a bad value. */
+typedef sh_status (*sh_cli_setter)(void *target, const char *key,
+                                   const char *value, sh_error *err);
+/* The choices a setter accepts for `key` (NULL-terminated), or NULL. */
+typedef const char *const *(*sh_cli_setter_choices)(const char *key);
+
+typedef struct sh_cli_tool {
+  const char *name;        /* "gl_shafts" */
+  const char *synopsis;    /* what follows the name in the usage line */
+  const char *description; /* paragraphs before the options */
+  const sh_cli_option *options;
+  int noptions;
+  int min_operands, max_operands;
+  void (*epilogue)(FILE *f); /* prints more help after the options (with
+                               sh_cli_help_item), or NULL */
+  const char *exit_extra;  /* a line on a tool's own status (3), or NULL */
+  sh_cli_setter setter;    /* SETTER options: checks and sets a value */
+  void *setter_target;     /* a scratch target the parse checks on */
+  sh_cli_setter_choices setter_choices;
+} sh_cli_tool;
+
+/* What the parse found besides the values: the operands (arguments that
+ * are no option), in order, and which options were given. */
+#define SH_CLI_MAX_OPERANDS 64
+#define SH_CLI_MAX_OPTIONS 64
+typedef struct sh_cli_args {
+  const char *operands[SH_CLI_MAX_OPERANDS];
+  int noperands;
+  unsigned char given[SH_CLI_MAX_OPTIONS]; /* by the option's index */
+  struct {
+    const char *key;
+    char value[128];
+  } settings[SH_CLI_MAX_OPTIONS]; /* SETTER options, in order */
+  int nsettings;
+} sh_cli_args;
+
+/* Parses argv against the tool's table into `values` (the tool's struct,
+ * filled with its defaults beforehand) and `args`. Returns -1 to go on, or
+ * the status to exit with: 0 after --help or --version (printed on
+ * stdout), 2 after a message on stderr. Options and operands may come in
+ * any order; "--" ends the options. */
+int sh_cli_parse(const sh_cli_tool *tool, int argc, char **argv,
+                 void *values, sh_cli_args *args);
+
+/* Applies the SETTER options given (checked by the parse on the tool's
+ * setter_target) to `target`, in order: the renderer's options once the
+ * scene has given their defaults. */
+sh_status sh_cli_apply(const sh_cli_tool *tool, const sh_cli_args *args,
+                       void *target, sh_error *err);
+
+/* Prints the --help text to f. */
+void sh_cli_help(const sh_cli_tool *tool, FILE *f);
+
+/* Prints one item of a help list: the label indented by two, the text
+ * word-wrapped in the help's second column. */
+void sh_cli_help_item(FILE *f, const char *label, const char *text);
+
+/* Whether the option with this long name was given. */
+int sh_cli_given(const sh_cli_tool *tool, const sh_cli_args *args,
+                 const char *name);
+
+/* The name of the choice with `value`, or "?". */
+const char *sh_cli_choice_name(const sh_cli_choice *choices, int value);
+
+/* Checks an output path before any work: its extension is one of `exts`
+ * ("exr,png"; NULL: any) and its directory exists and is writable, or,
+ * with `create`, is made (with its parents). Prints the problem and
+ * returns 0, else 1. */
+int sh_cli_check_output(const char *tool, const char *option,
+                        const char *path, const char *exts, int create);
+
+/* Loads a scene for a tool: prints the located error and returns its exit
+ * status (a missing or unreadable scene or mesh file is bad input, 2), or
+ * returns 0 with *scene set. Warns (unless quiet) when the scene has no
+ * lights. */
+int sh_cli_load_scene(const char *tool, const char *path, int quiet,
+                      sh_scene **scene);
+
+/* Overrides the camera's size by --width/--height (0: the scene's). The
+ * aspect ratio follows the new size; the vertical field of view stays. */
+void sh_cli_resize(sh_scene *scene, long width, long height);
+
+/* The process exit status for a library status: 2 for bad input (syntax,
+ * scene, image, mesh, argument errors), 1 for the rest. */
 int sh_exit_code(sh_status status);
 
 /* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
@@ -48,10 +182,24 @@ sh_stats *sh_stats_new(void);
 sh_stats *sh_stats_from_json(const char *text);
 void sh_stats_num(sh_stats *s, const char *key, double value);
 void sh_stats_str(sh_stats *s, const char *key, const char *value);
+/* Adds (or replaces) every key of `from` in s; either may be NULL. */
+void sh_stats_merge(sh_stats *s, const sh_stats *from);
 /* Writes the record atomically to path. */
 sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err);
 /* Frees the record; NULL is allowed. */
 void sh_stats_free(sh_stats *s);
+
+/* The record's text (compact JSON), malloc'd; NULL if out of memory. */
+char *sh_stats_text(const sh_stats *s);
+
+/* Writes one rendered image to every output, each carrying its provenance
+ * in the header (sh_image_write_meta): "Software" (tool and version) and
+ * shafts:tool, shafts:version, shafts:mode, shafts:settings (JSON) and
+ * shafts:scene (the scene file's absolute path). */
+sh_status sh_cli_write_images(const char *tool, const sh_cli_list *outputs,
+                              const sh_image *img, double exposure,
+                              const char *mode, const char *settings_json,
+                              const char *scene, sh_error *err);
 
 #ifdef __cplusplus
 }

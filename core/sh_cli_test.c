@@ -1,32 +1,130 @@
-/* Command-line helpers: option values, operands and render outputs. Their
- * messages go to stderr, which the test leaves visible. */
+/* Command-line helpers: an option table parsed with getopt_long (values,
+ * limits, choices, repeated and multi-valued options, operands, unknown
+ * options and missing values), the --help text drawn from the table, and
+ * output checks. Their messages go to stderr, which the test leaves
+ * visible. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "sh_cli.h"
+#include "sh_options.h"
 #include "sh_test.h"
 
+typedef struct values {
+  sh_cli_list out;
+  long n, size[2];
+  double x;
+  int flag, choice;
+  const char *name;
+} values;
+
+static const sh_cli_choice colours[] = {{"red", 1}, {"green", 2}, {NULL, 0}};
+
+#define F(f) offsetof(values, f)
+static const sh_cli_option options[] = {
+    {"output", 'o', SH_CLI_LIST, "FILE", 0, F(out), 0, 0, 0, 0, NULL, NULL,
+     NULL, NULL, "an output"},
+    {"n", 0, SH_CLI_INT, "N", 1, F(n), 0, 100, 0, 0, NULL, NULL, NULL, "7",
+     "a count"},
+    {"size", 0, SH_CLI_INT, "W H", 2, F(size), 1, 10, 0, 0, NULL, NULL, NULL,
+     NULL, "two counts"},
+    {"x", 0, SH_CLI_NUMBER, "X", 1, F(x), 0, INFINITY, 1, 0, NULL, NULL, NULL,
+     NULL, "a number > 0"},
+    {"flag", 'f', SH_CLI_FLAG, NULL, 0, F(flag), 0, 0, 0, 1, NULL, NULL, NULL,
+     NULL, "a flag"},
+    {"colour", 0, SH_CLI_CHOICE, NULL, 0, F(choice), 0, 0, 0, 0, colours,
+     NULL, NULL, NULL, "a colour"},
+    {"name", 0, SH_CLI_TEXT, "NAME", 1, F(name), 0, 0, 0, 0, NULL, NULL, NULL,
+     NULL, "a name"},
+    {"level", 0, SH_CLI_SETTER, NULL, 0, 0, 0, 0, 0, 0, NULL, "level", NULL,
+     NULL, "a renderer's option"},
+};
+
+/* A renderer's options: one int "level" in [1, 3]. */
+typedef struct renderer {
+  int level;
+} renderer;
+static const sh__opt level_def[] = {
+    {"level", offsetof(renderer, level), SH__OPT_INT, 1, 3, 0, NULL, 0, 0, 0, 0}};
+static sh_status set_level(void *t, const char *key, const char *value,
+                           sh_error *err) {
+  return sh__options_set(level_def, 1, t, key, value, err);
+}
+
+static renderer scratch;
+static const sh_cli_tool tool = {
+    "t", "IN [options]", "A test tool.", options,
+    (int)(sizeof options / sizeof *options), 1, 2, NULL, NULL,
+    set_level, &scratch, NULL};
+
+/* Parses a NULL-terminated argument list. */
+static int parse(values *v, sh_cli_args *a, ...) {
+  char *argv[32] = {"t"};
+  int argc = 1;
+  va_list ap;
+  va_start(ap, a);
+  for (char *s; argc < 31 && (s = va_arg(ap, char *));) argv[argc++] = s;
+  va_end(ap);
+  memset(v, 0, sizeof *v);
+  return sh_cli_parse(&tool, argc, argv, v, a);
+}
+
 int main(void) {
-  long n = 0;
-  SH_CHECK(sh_cli_int("t", "--n", "12", 0, 100, &n) && n == 12);
-  SH_CHECK(!sh_cli_int("t", "--n", "101", 0, 100, &n));
-  SH_CHECK(!sh_cli_int("t", "--n", "1x", 0, 100, &n));
-  SH_CHECK(!sh_cli_int("t", "--n", NULL, 0, 100, &n));
-  double x = 0;
-  SH_CHECK(sh_cli_double("t", "--x", "0.25", &x) && x == 0.25);
-  SH_CHECK(!sh_cli_double("t", "--x", "inf", &x));
-  SH_CHECK(!sh_cli_double("t", "--x", "", &x));
+  values v;
+  sh_cli_args a;
+  SH_CHECK(parse(&v, &a, "in", "-o", "a.exr", "--output", "b.png", "--n",
+                 "12", "--size", "3", "4", "-f", "--colour", "green", "--x",
+                 "0.25", "--name=k", "--level", "2", "in2", NULL) == -1);
+  SH_CHECK(v.out.count == 2 && !strcmp(v.out.items[1], "b.png"));
+  SH_CHECK(v.n == 12 && v.size[0] == 3 && v.size[1] == 4 && v.flag == 1);
+  SH_CHECK(v.choice == 2 && v.x == 0.25 && !strcmp(v.name, "k"));
+  SH_CHECK(a.noperands == 2 && !strcmp(a.operands[1], "in2"));
+  SH_CHECK(sh_cli_given(&tool, &a, "n") && !sh_cli_given(&tool, &a, "name") == 0);
+  renderer r = {0};
+  SH_CHECK(sh_cli_apply(&tool, &a, &r, NULL) == SH_OK && r.level == 2);
 
-  const char *a = NULL, *b = NULL;
-  const char **slots[] = {&a, &b};
-  SH_CHECK(sh_cli_operand("t", "ref.exr", slots, 2) && a && !b);
-  SH_CHECK(sh_cli_operand("t", "-", slots, 2) && b && b[0] == '-');
-  SH_CHECK(!sh_cli_operand("t", "third", slots, 2));
-  a = b = NULL;
-  SH_CHECK(!sh_cli_operand("t", "--bogus", slots, 2) && !a);
+  /* Bad values, unknown options (last, too), missing values, operands. */
+  SH_CHECK(parse(&v, &a, "in", "--n", "101", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--n", "1x", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--x", "0", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--x", "inf", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--colour", "blue", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--level", "4", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--size", "3", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--bogus", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--n", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "-x", NULL) == 2);
+  SH_CHECK(parse(&v, &a, NULL) == 2);
+  SH_CHECK(parse(&v, &a, "a", "b", "c", NULL) == 2);
+  SH_CHECK(parse(&v, &a, "in", "--", "-dash", NULL) == -1 &&
+           !strcmp(a.operands[1], "-dash"));
+  SH_CHECK(parse(&v, &a, "-", NULL) == -1 && !strcmp(a.operands[0], "-"));
+  SH_CHECK(parse(&v, &a, "--version", NULL) == 0);
+  SH_CHECK(parse(&v, &a, "--help", NULL) == 0);
 
-  const char *outs[] = {"a.exr", "b.png"};
-  SH_CHECK(sh_cli_check_render_outputs("t", "s.json", outs, 2));
-  SH_CHECK(!sh_cli_check_render_outputs("t", NULL, outs, 2));
-  SH_CHECK(!sh_cli_check_render_outputs("t", "s.json", outs, 0));
-  const char *bad[] = {"a.exr", "b.tif"};
-  SH_CHECK(!sh_cli_check_render_outputs("t", "s.json", bad, 2));
+  /* Outputs: extensions and directories, made with create. */
+  SH_CHECK(sh_cli_check_output("t", "-o", "a.exr", "exr,png", 0));
+  SH_CHECK(!sh_cli_check_output("t", "-o", "a.tif", "exr,png", 0));
+  char dir[] = "/tmp/sh_cli_testXXXXXX";
+  SH_CHECK(mkdtemp(dir) != NULL);
+  char path[256];
+  snprintf(path, sizeof path, "%s/x/y/a.exr", dir);
+  SH_CHECK(!sh_cli_check_output("t", "-o", path, "exr", 0));
+  SH_CHECK(sh_cli_check_output("t", "-o", path, "exr", 1));
+  SH_CHECK(sh_cli_check_output("t", "-o", path, "exr", 0));
+  snprintf(path, sizeof path, "%s/x/y", dir);
+  rmdir(path);
+  snprintf(path, sizeof path, "%s/x", dir);
+  rmdir(path);
+  rmdir(dir);
+
+  SH_CHECK(sh_exit_code(SH_ERR_SCENE) == SH_EXIT_BAD_INPUT);
+  SH_CHECK(sh_exit_code(SH_ERR_DEVICE) == SH_EXIT_FAILURE);
   SH_TEST_DONE();
 }

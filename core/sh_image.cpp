@@ -182,7 +182,7 @@ sh_status make_temp(const std::string &path, const std::string &ext,
 }
 
 sh_status write_impl(const char *path, const sh_image *img, double exposure,
-                     sh_error *err) {
+                     const char *const *attrs, sh_error *err) {
   if (!img->rgb || img->width < 1 || img->height < 1)
     return sh_error_set(err, SH_ERR_ARG, "cannot write '%s': the image is empty",
                         path);
@@ -226,6 +226,8 @@ sh_status write_impl(const char *path, const sh_image *img, double exposure,
     }
     data = bytes.data();
   }
+  for (int i = 0; attrs && attrs[i] && attrs[i + 1]; i += 2)
+    spec.attribute(attrs[i], attrs[i + 1]);
   TempFile guard;
   sh_status st = make_temp(spath, ext, &guard.name, err);
   if (st != SH_OK)
@@ -285,15 +287,17 @@ extern "C" sh_status sh_image_read_data(const char *path, sh_image *img,
   return read_guarded(path, img, false, err);
 }
 
-extern "C" sh_status sh_image_write(const char *path, const sh_image *img,
-                                    double exposure, sh_error *err) {
+extern "C" sh_status sh_image_write_meta(const char *path,
+                                         const sh_image *img, double exposure,
+                                         const char *const *attrs,
+                                         sh_error *err) {
   if (!img || !path || !*path)
     return sh_error_set(err, SH_ERR_ARG,
                         "sh_image_write was given no image or no path");
   // write_impl's TempFile guard removes the temporary file on every failure,
   // exceptions included.
   try {
-    return write_impl(path, img, exposure, err);
+    return write_impl(path, img, exposure, attrs, err);
   } catch (const std::bad_alloc &) {
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory writing image '%s'",
                         path);
@@ -304,4 +308,9 @@ extern "C" sh_status sh_image_write(const char *path, const sh_image *img,
     return sh_error_set(err, SH_ERR_IMAGE,
                         "cannot write image '%s': unknown exception", path);
   }
+}
+
+extern "C" sh_status sh_image_write(const char *path, const sh_image *img,
+                                    double exposure, sh_error *err) {
+  return sh_image_write_meta(path, img, exposure, NULL, err);
 }

@@ -46,6 +46,14 @@ sh_status sh_image_write(const char *path, const sh_image *img,
 sh_status sh_image_write_rgb(const char *path, int width, int height,
                              const float *rgb, double exposure, sh_error *err);
 
+/* As sh_image_write, with text attributes in the file's header: `attrs`
+ * holds key, value pairs and ends with NULL (NULL: none). EXR keeps them
+ * as string attributes, PNG as text chunks (OpenImageIO's metadata names:
+ * "Software", "ImageDescription", or "prefix:name" of one's own). */
+sh_status sh_image_write_meta(const char *path, const sh_image *img,
+                              double exposure, const char *const *attrs,
+                              sh_error *err);
+
 /* Bilinear look-up at texture coordinates (s, t) in [0, 1]^2, s to the right
  * and t downwards, clamped to the edge. Writes 3 floats to out. */
 void sh_image_lookup(const sh_image *img, double s, double t, float out[3]);

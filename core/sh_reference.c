@@ -31,6 +31,8 @@ typedef struct worker {
   sh_rt_counters counters;
   uint64_t samples, camera_rays;
   sh_vec3 *vis; /* per-light scratch for the shadow hook */
+  double noise_sq, signal_sq; /* the noise estimate's sums */
+  long noise_pixels;
 } worker;
 
 static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng);
@@ -134,6 +136,26 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
  * (and of the light mesh's cache). */
 enum { TILE = 16 };
 
+/* The noise estimate's second render of a pixel (sh_reference_stats):
+ * independent random numbers, counted in no statistic but its own. */
+static void second_render(worker *w, sh_vec3 d, sh_vec3 L, uint64_t pixel) {
+  sh_rt_counters counters = w->counters;
+  uint64_t samples = w->samples;
+  sh_rng rng;
+  sh_rng_seed(&rng, w->job->opt->seed ^ 0x9e3779b97f4a7c15ULL,
+              pixel ^ 0x5851f42d4c957f2dULL);
+  sh_vec3 L2 = trace(w, w->job->frame.origin, d, 0, &rng);
+  w->counters = counters;
+  w->samples = samples;
+  sh_vec3 diff = sh_sub(L, L2);
+  double n = sh_dot(diff, diff), s = sh_dot(L, L);
+  if (isfinite(n) && isfinite(s)) {
+    w->noise_sq += 0.5 * n;
+    w->signal_sq += s;
+    w->noise_pixels++;
+  }
+}
+
 static void *work(void *arg) {
   worker *w = arg;
   job *jb = w->job;
@@ -150,6 +172,9 @@ static void *work(void *arg) {
         sh_vec3 d = sh_camera_dir(&jb->frame, x + 0.5, y + 0.5);
         w->camera_rays++;
         sh_vec3 L = trace(w, jb->frame.origin, d, 0, &rng);
+        if (!jb->opt->hook && x % SH_REFERENCE_NOISE_STRIDE == SH_REFERENCE_NOISE_STRIDE / 2 &&
+            y % SH_REFERENCE_NOISE_STRIDE == SH_REFERENCE_NOISE_STRIDE / 2)
+          second_render(w, d, L, (uint64_t)y * (uint64_t)width + x);
         float *px = jb->img->rgb + 3 * ((size_t)y * width + x);
         px[0] = (float)L.x;
         px[1] = (float)L.y;
@@ -227,13 +252,18 @@ sh_status sh_render_reference(const sh_scene *scene,
   work(&ws[0]);
   for (int i = 1; i < started; i++) pthread_join(ws[i].thread, NULL);
   if (stats) {
+    double noise_sq = 0, signal_sq = 0;
     memset(stats, 0, sizeof *stats);
     for (int i = 0; i < started; i++) {
       stats->camera_rays += ws[i].camera_rays;
       stats->closest_rays += ws[i].counters.closest;
       stats->occlusion_rays += ws[i].counters.occlusion;
       stats->medium_samples += ws[i].samples;
+      noise_sq += ws[i].noise_sq;
+      signal_sq += ws[i].signal_sq;
+      stats->noise_pixels += ws[i].noise_pixels;
     }
+    stats->noise_rel_rms = signal_sq > 0 ? sqrt(noise_sq / signal_sq) : 0.0;
     stats->threads = started;
     stats->seconds = sh_seconds() - start;
   }

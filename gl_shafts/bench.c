@@ -4,11 +4,13 @@
  * renderer, as a Markdown table. With --sweep-planes or --sweep-lattice it
  * measures how error and time move with the number of planes and lattice
  * points (the seed's figures 5 and 6). bench.sh runs the standard set. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_util.h"
+#include "gs_named.h"
 #include "gs_render.h"
 #include "sh_cli.h"
 #include "sh_compare.h"
@@ -20,33 +22,67 @@
 
 static const char *const TOOL = "gl_shafts_bench";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: gl_shafts_bench [options] SCENE.json...\n"
-"\n"
-"options:\n"
-"  --size W H            render at W x H instead of the scene's size\n"
-"  --frames N            timed frames after one warm-up frame (default 5)\n"
-"  --ref-spp N           reference samples (default 1024); 0: no error column\n"
-"  --cache DIR           where references are kept (default: .)\n"
-"  --planes N, --lattice NU NV, --xi lattice|exact, --jitter, --no-jitter,\n"
-"  --shadow-map-res S, --light-map-res R, --sub-angle DEG, --sub-texels T\n"
-"                        as gl_shafts (default: its defaults)\n"
-"  --backend auto|egl|osmesa  the GL context's backend (default auto)\n"
-"  --sweep-planes LIST   comma-separated plane counts to measure in turn\n"
-"  --sweep-lattice LIST  comma-separated lattice sizes (n for n x n)\n"
-"  --sweep-xi            measure both xi lattice and xi exact\n"
-"  --diff DIR            write each render and its difference to the reference\n"
-"  --compare A B         only print the error of image A against reference B\n");
+/* What sweeps override, per run: 0 (or xi DEFAULT) leaves the options. */
+typedef struct sweep {
+  int planes, lattice;
+  sh_xi_mode xi;
+} sweep;
+
+typedef struct args {
+  long size[2], frames, spp;
+  const char *cache, *diffdir, *sweep_planes, *sweep_lattice;
+  const char *compare[2];
+  int sweep_xi;
+} args;
+
+#define FIELD(f) offsetof(args, f)
+#define RENDERER(name, key, meta, n, fixed)                                    \
+  {name, 0, SH_CLI_SETTER, meta, n, 0, 0, 0, 0, 0, NULL, key, fixed, NULL,     \
+   "as gl_shafts"}
+static const sh_cli_option options[] = {
+    {"size", 0, SH_CLI_INT, "W H", 2, FIELD(size), 1, 16384, 0, 0, NULL, NULL,
+     NULL, NULL, "render at W x H instead of the scene's size"},
+    {"frames", 0, SH_CLI_INT, "N", 1, FIELD(frames), 1, 10000, 0, 0, NULL,
+     NULL, NULL, "5", "timed frames after one warm-up frame"},
+    {"ref-spp", 0, SH_CLI_INT, "N", 1, FIELD(spp), 0, 1 << 20, 0, 0, NULL,
+     NULL, NULL, "1024", "reference samples; 0: no error column"},
+    {"cache", 0, SH_CLI_TEXT, "DIR", 1, FIELD(cache), 0, 0, 0, 0, NULL, NULL,
+     NULL, ".", "where references are kept"},
+    RENDERER("planes", "planes", "N", 0, NULL),
+    RENDERER("lattice", "lattice", "NU NV", 2, NULL),
+    RENDERER("xi", "xi", NULL, 0, NULL),
+    RENDERER("jitter", "jitter", NULL, 0, "1"),
+    RENDERER("no-jitter", "jitter", NULL, 0, "0"),
+    RENDERER("shadow-map-res", "shadow_map_res", "S", 0, NULL),
+    RENDERER("light-map-res", "light_map_res", "R", 0, NULL),
+    RENDERER("sub-angle", "sub_angle_deg", "DEG", 0, NULL),
+    RENDERER("sub-texels", "sub_texels", "T", 0, NULL),
+    RENDERER("backend", "backend", NULL, 0, NULL),
+    {"sweep-planes", 0, SH_CLI_TEXT, "LIST", 1, FIELD(sweep_planes), 0, 0, 0,
+     0, NULL, NULL, NULL, NULL, "comma-separated plane counts to measure in turn"},
+    {"sweep-lattice", 0, SH_CLI_TEXT, "LIST", 1, FIELD(sweep_lattice), 0, 0,
+     0, 0, NULL, NULL, NULL, NULL, "comma-separated lattice sizes (n for n x n)"},
+    {"sweep-xi", 0, SH_CLI_FLAG, NULL, 0, FIELD(sweep_xi), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL, "measure both xi lattice and xi exact"},
+    {"diff", 0, SH_CLI_TEXT, "DIR", 1, FIELD(diffdir), 0, 0, 0, 0, NULL, NULL,
+     NULL, NULL, "write each render and its difference to the reference"},
+    {"compare", 0, SH_CLI_TEXT, "A B", 2, FIELD(compare), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL, "only print the error of image A against reference B"},
+};
+
+static sh_status set_option(void *target, const char *key, const char *value,
+                            sh_error *err) {
+  return gs_options_set(target, key, value, err);
 }
 
-typedef struct config {
-  long planes, lu, lv, smres, lmres;
-  double sub_angle, sub_texels;
-  sh_xi_mode xi;
-  int jitter;
-  gs_backend backend;
-} config;
+static gs_options scratch;
+static const sh_cli_tool tool = {
+    TOOL, "[options] SCENE.json...",
+    "Renders scenes in-process and reports time per frame, where it goes and "
+    "the\nerror against the converged reference renderer, as a Markdown "
+    "table.",
+    options, (int)(sizeof options / sizeof *options), 0, SH_CLI_MAX_OPERANDS,
+    NULL, NULL, set_option, &scratch, gs_option_choices};
 
 static int parse_list(const char *s, long *out, int max) {
   int n = 0;
@@ -97,19 +133,15 @@ static sh_status reference(const sh_scene *scene, const char *path, int spp,
   return st;
 }
 
-static sh_status run(const char *path, sh_scene *scene, const config *c,
-                     int frames, const sh_image *ref, const char *diffdir,
-                     sh_error *err) {
+static sh_status run(const char *path, sh_scene *scene,
+                     const sh_cli_args *parsed, const sweep *sw, int frames,
+                     const sh_image *ref, const char *diffdir, sh_error *err) {
   gs_options o = gs_options_defaults(scene);
-  if (c->planes) o.planes = (int)c->planes;
-  if (c->lu) o.lattice_u = (int)c->lu, o.lattice_v = (int)c->lv;
-  if (c->smres) o.shadow_map_res = (int)c->smres;
-  if (c->lmres) o.light_map_res = (int)c->lmres;
-  if (c->xi != SH_XI_DEFAULT) o.xi = c->xi;
-  if (c->jitter >= 0) o.jitter = c->jitter;
-  if (c->sub_angle > 0) o.sub_angle_deg = c->sub_angle;
-  if (c->sub_texels > 0) o.sub_texels = c->sub_texels;
-  o.backend = c->backend;
+  sh_status st0 = sh_cli_apply(&tool, parsed, &o, err);
+  if (st0 != SH_OK) return st0;
+  if (sw->planes) o.planes = sw->planes;
+  if (sw->lattice) o.lattice_u = o.lattice_v = sw->lattice;
+  if (sw->xi != SH_XI_DEFAULT) o.xi = sw->xi;
   double t0 = sh_seconds();
   gs_renderer *r = NULL;
   sh_status st = gs_renderer_create(scene, &o, &r, err);
@@ -152,7 +184,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
            "| %.1f / %.1f / %.1f / %.1f / %.1f | %.2f | %s | %s | %s: %s (%s) |\n",
            base, img.width, img.height,
            scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes,
-           o.lattice_u, o.lattice_v, o.xi == SH_XI_EXACT ? "exact" : "lattice",
+           o.lattice_u, o.lattice_v, gs_option_name("xi", o.xi),
            o.jitter ? " +jitter" : "", o.sub_angle_deg, o.sub_texels, 1000 * best, 1000 * med,
            1000 * cpu, 1000 * (setup + first), 1000 * setup, 1000 * m->shadow_seconds,
            1000 * m->surface_seconds, 1000 * m->lattice_seconds,
@@ -163,7 +195,7 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
       char name[1024];
       snprintf(name, sizeof name, "%s/%.*s_p%d_l%d_%s.exr", diffdir,
                (int)strlen(base) - 5, base, o.planes, o.lattice_u,
-               o.xi == SH_XI_EXACT ? "exact" : "lattice");
+               gs_option_name("xi", o.xi));
       st = sh_image_write(name, &img, 0, err);
       memcpy(name + strlen(name) - 4, "_dif.exr", 9);
       if (st == SH_OK) st = sh_image_write(name, &d, 0, err);
@@ -177,122 +209,69 @@ static sh_status run(const char *path, sh_scene *scene, const config *c,
   return st;
 }
 
+/* --compare A B: the error of A against B. */
+static int compare(const char *a_path, const char *b_path) {
+  sh_error err;
+  sh_image a = {0}, b = {0};
+  sh_image_error e;
+  int rc = 0;
+  if (sh_image_read(a_path, &a, &err) != SH_OK ||
+      sh_image_read(b_path, &b, &err) != SH_OK ||
+      sh_image_compare(&a, &b, 0.01, &e, NULL, &err) != SH_OK)
+    rc = sh_cli_report(TOOL, &err);
+  else
+    printf("error %.3f %%, mean relative %.3f %%, %ld lit pixels\n",
+           100 * e.rel_rms, 100 * e.mean_rel, e.lit_pixels);
+  sh_image_free(&a);
+  sh_image_free(&b);
+  return rc;
+}
+
 int main(int argc, char **argv) {
-  config base = {0, 0, 0, 0, 0, 0, 0, SH_XI_DEFAULT, -1, GS_BACKEND_AUTO};
-  long w = 0, h = 0, frames = 5, spp = 1024;
+  args a = {{0, 0}, 5, 1024, ".", NULL, NULL, NULL, {NULL, NULL}, 0};
+  sh_scene no_keys; /* options are checked on the built-in defaults */
+  memset(&no_keys, 0, sizeof no_keys);
+  scratch = gs_options_defaults(&no_keys);
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
+  if (a.compare[0]) return compare(a.compare[0], a.compare[1]);
   long sweep_p[32], sweep_l[32];
-  int np = 0, nl = 0, sweep_xi = 0;
-  const char *cache = ".", *diffdir = NULL;
-  const char *scenes[64];
-  int nscenes = 0;
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    const char *v2 = i + 2 < argc ? argv[i + 2] : NULL;
-    int ok = 1;
-    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(o, "--jitter") || !strcmp(o, "--no-jitter")) {
-      base.jitter = !strcmp(o, "--jitter");
-      continue;
-    } else if (!strcmp(o, "--sweep-xi")) {
-      sweep_xi = 1;
-      continue;
-    } else if (o[0] == '-' && !v) {
-      fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
-      return 2;
-    } else if (!strcmp(o, "--size")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 16384, &w) && sh_cli_int(TOOL, o, v2, 1, 16384, &h);
-      i++;
-    } else if (!strcmp(o, "--frames")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 10000, &frames);
-    } else if (!strcmp(o, "--ref-spp")) {
-      ok = sh_cli_int(TOOL, o, v, 0, 1 << 20, &spp);
-    } else if (!strcmp(o, "--compare")) {
-      sh_error err;
-      sh_image a = {0}, b = {0};
-      if (!v2) return 2;
-      if (sh_image_read(v, &a, &err) != SH_OK || sh_image_read(v2, &b, &err) != SH_OK)
-        return sh_cli_report(TOOL, &err);
-      sh_image_error e;
-      if (sh_image_compare(&a, &b, 0.01, &e, NULL, &err) != SH_OK)
-        return sh_cli_report(TOOL, &err);
-      printf("error %.3f %%, mean relative %.3f %%, %ld lit pixels\n",
-             100 * e.rel_rms, 100 * e.mean_rel, e.lit_pixels);
-      sh_image_free(&a);
-      sh_image_free(&b);
-      return 0;
-    } else if (!strcmp(o, "--cache")) {
-      cache = v;
-    } else if (!strcmp(o, "--diff")) {
-      diffdir = v;
-    } else if (!strcmp(o, "--planes")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 100000, &base.planes);
-    } else if (!strcmp(o, "--lattice")) {
-      ok = sh_cli_int(TOOL, o, v, 2, 4096, &base.lu) &&
-           sh_cli_int(TOOL, o, v2, 2, 4096, &base.lv);
-      i++;
-    } else if (!strcmp(o, "--shadow-map-res")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 16384, &base.smres);
-    } else if (!strcmp(o, "--light-map-res")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 16384, &base.lmres);
-    } else if (!strcmp(o, "--sub-texels")) {
-      ok = sh_cli_double(TOOL, o, v, &base.sub_texels) && base.sub_texels > 0;
-    } else if (!strcmp(o, "--sub-angle")) {
-      ok = sh_cli_double(TOOL, o, v, &base.sub_angle) && base.sub_angle > 0;
-    } else if (!strcmp(o, "--xi")) {
-      base.xi = !strcmp(v, "exact") ? SH_XI_EXACT : SH_XI_LATTICE;
-      ok = !strcmp(v, "exact") || !strcmp(v, "lattice");
-    } else if (!strcmp(o, "--backend")) {
-      ok = !strcmp(v, "auto") || !strcmp(v, "egl") || !strcmp(v, "osmesa");
-      base.backend = !strcmp(v, "egl")      ? GS_BACKEND_EGL
-                     : !strcmp(v, "osmesa") ? GS_BACKEND_OSMESA
-                                            : GS_BACKEND_AUTO;
-    } else if (!strcmp(o, "--sweep-planes")) {
-      ok = (np = parse_list(v, sweep_p, 32)) > 0;
-    } else if (!strcmp(o, "--sweep-lattice")) {
-      ok = (nl = parse_list(v, sweep_l, 32)) > 0;
-    } else if (o[0] == '-') {
-      fprintf(stderr, "%s: unknown option '%s'\n", TOOL, o);
-      return 2;
-    } else {
-      if (nscenes < 64) scenes[nscenes++] = o;
-      continue;
-    }
-    if (!ok) {
-      fprintf(stderr, "%s: bad value for %s\n", TOOL, o);
-      return 2;
-    }
-    i++;
+  int np = 0, nl = 0;
+  if ((a.sweep_planes && (np = parse_list(a.sweep_planes, sweep_p, 32)) <= 0) ||
+      (a.sweep_lattice && (nl = parse_list(a.sweep_lattice, sweep_l, 32)) <= 0)) {
+    fprintf(stderr, "%s: --sweep-planes and --sweep-lattice expect "
+                    "comma-separated counts >= 1\n", TOOL);
+    return SH_EXIT_BAD_INPUT;
   }
-  if (!nscenes) {
-    usage(stderr);
-    return 2;
+  if (!parsed.noperands) {
+    sh_cli_help(&tool, stderr);
+    return SH_EXIT_BAD_INPUT;
   }
   printf("| scene | size | planes | lattice | xi | sub-angle ° | sub-texels | ms/frame: best "
          "(median) | CPU ms/frame | first frame ms (with context) | context + upload ms | shadow / "
          "surface / lattice / planes / readback ms | Mfragments | error %% | "
          "mean rel. %% | backend: GL_RENDERER (GL_VENDOR) |\n");
   printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  int rc = 0;
-  for (int k = 0; k < nscenes && rc == 0; k++) {
+  rc = 0;
+  for (int k = 0; k < parsed.noperands && rc == 0; k++) {
     sh_error err;
     sh_scene *scene = NULL;
-    if (sh_scene_load(scenes[k], &scene, &err) != SH_OK) return sh_cli_report(TOOL, &err);
-    if (w) scene->camera.width = (int)w, scene->camera.height = (int)h;
+    const char *path = parsed.operands[k];
+    if ((rc = sh_cli_load_scene(TOOL, path, 1, &scene))) return rc;
+    sh_cli_resize(scene, a.size[0], a.size[1]);
     sh_image ref = {0};
-    if (spp > 0 && reference(scene, scenes[k], (int)spp, cache, &ref, &err) != SH_OK)
+    if (a.spp > 0 && reference(scene, path, (int)a.spp, a.cache, &ref, &err) != SH_OK)
       rc = sh_cli_report(TOOL, &err);
-    int nps = np ? np : 1, nls = nl ? nl : 1, nxs = sweep_xi ? 2 : 1;
-    for (int a = 0; a < nps && rc == 0; a++)
-      for (int b = 0; b < nls && rc == 0; b++)
+    int nps = np ? np : 1, nls = nl ? nl : 1, nxs = a.sweep_xi ? 2 : 1;
+    for (int p = 0; p < nps && rc == 0; p++)
+      for (int l = 0; l < nls && rc == 0; l++)
         for (int x = 0; x < nxs && rc == 0; x++) {
-          config c = base;
-          if (np) c.planes = sweep_p[a];
-          if (nl) c.lu = c.lv = sweep_l[b];
-          if (sweep_xi) c.xi = x ? SH_XI_EXACT : SH_XI_LATTICE;
-          if (run(scenes[k], scene, &c, (int)frames, spp > 0 ? &ref : NULL,
-                  diffdir, &err) != SH_OK)
+          sweep sw = {np ? (int)sweep_p[p] : 0, nl ? (int)sweep_l[l] : 0,
+                      a.sweep_xi ? (x ? SH_XI_EXACT : SH_XI_LATTICE)
+                                 : SH_XI_DEFAULT};
+          if (run(path, scene, &parsed, &sw, (int)a.frames,
+                  a.spp > 0 ? &ref : NULL, a.diffdir, &err) != SH_OK)
             rc = sh_cli_report(TOOL, &err);
         }
     sh_image_free(&ref);

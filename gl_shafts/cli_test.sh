@@ -56,7 +56,6 @@ run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 grep -q "typo.json:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
   || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
 "$tool" "$dir/truncated.json" -o "$dir/x.exr" -q 2>/dev/null; check "truncated" 2 $?
-"$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 1 $?
 [ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
 ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
 
@@ -105,6 +104,17 @@ if [ "$backend" = egl ]; then
     "$dir/err" || { echo "FAIL: no-EGL message: $(cat "$dir/err")"; fail=1; }
   [ -e "$dir/y.exr" ] && { echo "FAIL: an output was written after the backend failed"; fail=1; }
 fi
+render_cli_common "$tool" "$dir/good.json"
+# --stats holds numbers: planes and shadow maps by the kinds of light
+# present, when no one number is given.
+sed 's/"render": {"planes": 7, /"render": {/' "$dir/good.json" >"$dir/kinds.json"
+"$tool" "$dir/kinds.json" -o "$dir/k.exr" --stats "$dir/k.json" -q; check "kinds" 0 $?
+for kv in '"planes_local": 4' '"shadow_map_res_local": 1024'; do
+  grep -q "$kv" "$dir/k.json" || { echo "FAIL: stats lack $kv: $(cat "$dir/k.json")"; fail=1; }
+done
+grep -q '"planes_directional"\|"planes_per_light"\|by light kind' "$dir/k.json" \
+  && { echo "FAIL: stats of lights not in the scene, or text for a number"; fail=1; }
+run_bad "--lattice 5000 5000 (the renderer's limit)" "$dir/good.json" -o "$dir/x.exr" --lattice 5000 5000
 # The same command gives the same image (pixels, not bytes: EXR headers
 # carry the time).
 "$tool" "$dir/good.json" -o "$dir/c.exr" -q

@@ -12,22 +12,73 @@
 static const char *const xi_names[] = {"lattice", "exact", NULL};
 static const char *const backend_names[] = {"auto", "egl", "osmesa", NULL};
 
-/* Kinds and choices only: the limits are gs_options_check's. */
-#define OPT(field, kind) #field, offsetof(gs_options, field), kind, -INFINITY, INFINITY, 0
+/* Every option's one limit (sh_options.h): gs_options_set and
+ * gs_options_check read this table. "lattice" sets lattice_u and
+ * lattice_v together ("NU NV", or "N" for both). */
+#define OPT(field) #field, offsetof(gs_options, field)
 static const sh__opt options[] = {
-    {OPT(planes, SH__OPT_INT), NULL, 0},
-    {OPT(lattice_u, SH__OPT_INT), NULL, 0},
-    {OPT(lattice_v, SH__OPT_INT), NULL, 0},
-    {OPT(light_map_res, SH__OPT_INT), NULL, 0},
-    {OPT(shadow_map_res, SH__OPT_INT), NULL, 0},
-    {OPT(xi, SH__OPT_CHOICE), xi_names, SH_XI_LATTICE},
-    {OPT(jitter, SH__OPT_BOOL), NULL, 0},
-    {OPT(sub_angle_deg, SH__OPT_DOUBLE), NULL, 0},
-    {OPT(sub_texels, SH__OPT_DOUBLE), NULL, 0},
-    {OPT(backend, SH__OPT_CHOICE), backend_names, GS_BACKEND_AUTO},
-    {OPT(live, SH__OPT_BOOL), NULL, 0},
+    /* 0: by the light's kind (GS_DEFAULT_PLANES_*) */
+    {OPT(planes), SH__OPT_INT, 1, 100000, 0, NULL, 0, 1, 0, 0},
+    {OPT(lattice_u), SH__OPT_INT, 2, 4096, 0, NULL, 0, 0, 0, 0},
+    {OPT(lattice_v), SH__OPT_INT, 2, 4096, 0, NULL, 0, 0, 0, 0},
+    {"lattice", offsetof(gs_options, lattice_u), SH__OPT_INT, 2, 4096, 0, NULL,
+     0, 0, 0, 2},
+    /* 0: each map at its own size */
+    {OPT(light_map_res), SH__OPT_INT, 1, 16384, 0, NULL, 0, 1, 0, 0},
+    /* 0: by the light's kind (GS_DEFAULT_SHADOW_*) */
+    {OPT(shadow_map_res), SH__OPT_INT, 1, 16384, 0, NULL, 0, 1, 0, 0},
+    {OPT(xi), SH__OPT_CHOICE, 0, 0, 0, xi_names, SH_XI_LATTICE, 0, 0, 0},
+    {OPT(jitter), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
+    {OPT(sub_angle_deg), SH__OPT_DOUBLE, 0, 30, 1, NULL, 0, 0, 0, 0},
+    {OPT(sub_texels), SH__OPT_DOUBLE, 0, 1e6, 1, NULL, 0, 0, 0, 0},
+    {OPT(backend), SH__OPT_CHOICE, 0, 0, 0, backend_names, GS_BACKEND_AUTO, 0,
+     0, 0},
+    {OPT(live), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
 };
 #undef OPT
+enum { NOPTIONS = sizeof options / sizeof *options };
+
+gs_options gs_options_defaults(const sh_scene *scene) {
+  gs_options o;
+  memset(&o, 0, sizeof o);
+  const sh_render_settings *r = &scene->render;
+  o.planes = r->planes > 0 ? r->planes : 0;
+  o.lattice_u = r->lattice_u > 0 ? r->lattice_u : GS_DEFAULT_LATTICE;
+  o.lattice_v = r->lattice_v > 0 ? r->lattice_v : GS_DEFAULT_LATTICE;
+  o.light_map_res = r->light_map_res > 0 ? r->light_map_res : 0;
+  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : 0;
+  o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
+  o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
+  o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
+  o.sub_texels = GS_DEFAULT_SUB_TEXELS;
+  return o;
+}
+
+int gs_light_planes(const gs_options *o, sh_light_type type) {
+  if (o->planes > 0) return o->planes;
+  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_PLANES_DIRECTIONAL
+                                      : GS_DEFAULT_PLANES_LOCAL;
+}
+
+int gs_light_shadow_map_res(const gs_options *o, sh_light_type type) {
+  if (o->shadow_map_res > 0) return o->shadow_map_res;
+  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_SHADOW_DIRECTIONAL
+                                      : GS_DEFAULT_SHADOW_LOCAL;
+}
+
+sh_status gs_options_check(const gs_options *opt, sh_error *err) {
+  return sh__options_check(options, NOPTIONS, opt, err);
+}
+
+const char *const *gs_option_choices(const char *key) {
+  const sh__opt *d = sh__options_find(options, NOPTIONS, key);
+  return d ? d->choices : NULL;
+}
+
+const char *gs_option_name(const char *key, int value) {
+  const sh__opt *d = sh__options_find(options, NOPTIONS, key);
+  return d ? sh__options_choice_name(d, value) : "?";
+}
 
 gs_options *gs_options_new(const sh_scene *scene) {
   gs_options *o = scene ? malloc(sizeof *o) : NULL;
@@ -41,8 +92,7 @@ sh_status gs_options_set(gs_options *opt, const char *key, const char *value,
                          sh_error *err) {
   if (!opt) return sh_error_set(err, SH_ERR_ARG, "gs_options_set: no options");
   gs_options next = *opt;
-  sh_status st = sh__options_set(options, sizeof options / sizeof *options,
-                                 &next, key, value, err);
+  sh_status st = sh__options_set(options, NOPTIONS, &next, key, value, err);
   if (st == SH_OK && (st = gs_options_check(&next, err)) != SH_OK) {
     if (err) snprintf(err->path, sizeof err->path, "%s", key);
     return st;

@@ -19,13 +19,18 @@ gs_options *gs_options_new(const sh_scene *scene);
 void gs_options_free(gs_options *opt);
 
 /* Sets the field named `key` (a gs_options field: "planes", "lattice_u",
- * "lattice_v", "light_map_res", "shadow_map_res", "xi" (lattice | exact),
+ * "lattice_v", "lattice" (both: "NU NV", or one N), "light_map_res", "shadow_map_res", "xi" (lattice | exact),
  * "jitter", "sub_angle_deg", "sub_texels", "backend" (auto | egl |
  * osmesa), "live"; booleans take 0/1/true/false) from text. The value must
  * pass gs_options_check; else SH_ERR_ARG with the key as the error's key
  * path, and the options are unchanged. */
 sh_status gs_options_set(gs_options *opt, const char *key, const char *value,
                          sh_error *err);
+
+/* The names an option takes (NULL-terminated: "xi", "backend"), or NULL
+ * for a number; and the name of one of its values ("?" if none). */
+const char *const *gs_option_choices(const char *key);
+const char *gs_option_name(const char *key, int value);
 
 /* The size of a gs_stats, for a binding's buffer. */
 size_t gs_stats_size(void);

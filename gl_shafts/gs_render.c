@@ -39,68 +39,6 @@ struct gs_renderer {
   long built_reported;        /* progs.built at the end of the last draw */
 };
 
-gs_options gs_options_defaults(const sh_scene *scene) {
-  gs_options o;
-  memset(&o, 0, sizeof o);
-  const sh_render_settings *r = &scene->render;
-  o.planes = r->planes > 0 ? r->planes : 0;
-  o.lattice_u = r->lattice_u > 0 ? r->lattice_u : GS_DEFAULT_LATTICE;
-  o.lattice_v = r->lattice_v > 0 ? r->lattice_v : GS_DEFAULT_LATTICE;
-  o.light_map_res = r->light_map_res > 0 ? r->light_map_res : 0;
-  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : 0;
-  o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
-  o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
-  o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
-  o.sub_texels = GS_DEFAULT_SUB_TEXELS;
-  return o;
-}
-
-int gs_light_planes(const gs_options *o, sh_light_type type) {
-  if (o->planes > 0) return o->planes;
-  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_PLANES_DIRECTIONAL
-                                      : GS_DEFAULT_PLANES_LOCAL;
-}
-
-int gs_light_shadow_map_res(const gs_options *o, sh_light_type type) {
-  if (o->shadow_map_res > 0) return o->shadow_map_res;
-  return type == SH_LIGHT_DIRECTIONAL ? GS_DEFAULT_SHADOW_DIRECTIONAL
-                                      : GS_DEFAULT_SHADOW_LOCAL;
-}
-
-sh_status gs_options_check(const gs_options *o, sh_error *err) {
-  if (o->planes < 0 || o->planes > 100000)
-    return sh_error_set(err, SH_ERR_ARG, "planes must be in [1, 100000], not %d",
-                        o->planes);
-  if (o->lattice_u < 2 || o->lattice_u > 4096 || o->lattice_v < 2 ||
-      o->lattice_v > 4096)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "the lattice must have 2 to 4096 points a side, not %dx%d",
-                        o->lattice_u, o->lattice_v);
-  if (o->light_map_res < 0 || o->light_map_res > 16384)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "light_map_res must be in [1, 16384] (or 0: native), not %d",
-                        o->light_map_res);
-  if (o->shadow_map_res < 0 || o->shadow_map_res > 16384)
-    return sh_error_set(err, SH_ERR_ARG, "shadow_map_res must be in [1, 16384], not %d",
-                        o->shadow_map_res);
-  if (o->xi != SH_XI_LATTICE && o->xi != SH_XI_EXACT)
-    return sh_error_set(err, SH_ERR_ARG, "xi must be lattice or exact");
-  if (o->jitter != 0 && o->jitter != 1)
-    return sh_error_set(err, SH_ERR_ARG, "jitter must be 0 or 1");
-  if (o->live != 0 && o->live != 1)
-    return sh_error_set(err, SH_ERR_ARG, "live must be 0 or 1, not %d", o->live);
-  if (!(o->sub_angle_deg > 0 && o->sub_angle_deg <= 30))
-    return sh_error_set(err, SH_ERR_ARG, "sub_angle must be in (0, 30] degrees, not %g",
-                        o->sub_angle_deg);
-  if (!(o->sub_texels > 0 && o->sub_texels <= 1e6))
-    return sh_error_set(err, SH_ERR_ARG, "sub_texels must be in (0, 1e6], not %g",
-                        o->sub_texels);
-  if (o->backend != GS_BACKEND_AUTO && o->backend != GS_BACKEND_EGL &&
-      o->backend != GS_BACKEND_OSMESA)
-    return sh_error_set(err, SH_ERR_ARG, "backend must be auto, egl or osmesa");
-  return SH_OK;
-}
-
 /* Checks the options against the GL implementation's limits. */
 static sh_status check_limits(const gs_renderer *r, sh_error *err) {
   GLint max2d = 0, max3d = 0, maxcube = 0, maxview[2] = {0, 0};

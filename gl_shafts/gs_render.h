@@ -117,7 +117,9 @@ gs_options gs_options_defaults(const sh_scene *scene);
 int gs_light_planes(const gs_options *opt, sh_light_type type);
 int gs_light_shadow_map_res(const gs_options *opt, sh_light_type type);
 
-/* SH_ERR_ARG with a message naming the option if a value is out of range. */
+/* SH_ERR_ARG with a message naming the option (as the error's key) if a
+ * value is out of range. The limits and choices are one table
+ * (gs_named.c) that gs_options_set (gs_named.h) reads too. */
 sh_status gs_options_check(const gs_options *opt, sh_error *err);
 
 /* Where the time of a frame went, and how much was drawn. */

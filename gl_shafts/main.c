@@ -1,6 +1,9 @@
 /* gl_shafts: renders a scene with the plane-sweep method of Dobashi et al.
  * (2000) on OpenGL through EGL or OSMesa. The command-line face of
- * gs_render.h. */
+ * gs_render.h: the renderer's options are set by name (gs_options_set), so
+ * their limits and choices are the renderer's own. */
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,239 +11,235 @@
 #include "gs_named.h"
 #include "gs_render.h"
 #include "sh_cli.h"
-#include "sh_file.h"
-#include "sh_image.h"
 #include "sh_parse.h"
 
 static const char *const TOOL = "gl_shafts";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: gl_shafts SCENE.json -o OUT.exr|OUT.png [options]\n"
-"\n"
-"Renders a scene (docs/scene-format.md) with shafts of light by the plane-sweep\n"
-"method of Dobashi, Yamamoto and Nishita (2000) on OpenGL 4.5, through EGL (a\n"
-"GPU if there is one, else llvmpipe on the CPU) or OSMesa.\n"
-"Options override the scene's render keys; docs/gl_shafts.md has the details.\n"
-"\n"
-"options:\n"
-"  -o, --output FILE      output image: .exr (linear 32-bit float radiance) or\n"
-"                         .png (sRGB of radiance * 2^exposure, clamped);\n"
-"                         repeat to write several formats from one render\n"
-"  --planes N             virtual planes per light (default: render.planes, else\n"
-"                         %d for point and spot lights, %d for directional ones)\n"
-"  --lattice NU NV        lattice points per plane for xi (default: render.lattice,\n"
-"                         else %d %d)\n"
-"  --light-map-res R      resample light maps to R x R (default: render.light_map_res,\n"
-"                         else each map's own size)\n"
-"  --shadow-map-res S     shadow-map size (default: render.shadow_map_res, else\n"
-"                         %d for point and spot lights, %d for directional ones)\n"
-"  --xi lattice|exact     xi on the lattice, interpolated (the paper's method), or\n"
-"                         per fragment (default: render.xi, else %s)\n"
-"  --jitter, --no-jitter  per-pixel jitter of the sample depths (default:\n"
-"                         render.jitter, else %s)\n"
-"  --sub-angle DEG        point and spot lights: one sample per DEG degrees that a\n"
-"                         plane's part of a ray subtends at the light (default %g)\n"
-"  --sub-texels T         lights with a map (a spot's gobo, a window): one sample\n"
-"                         per T map texels a plane's part of a ray crosses\n"
-"                         (default %g)\n"
-"  --backend auto|egl|osmesa\n"
-"                         where the GL context comes from (default auto: EGL's\n"
-"                         devices, a GPU first, then EGL surfaceless, then OSMesa;\n"
-"                         the environment variable SHAFTS_GL_BACKEND narrows auto)\n"
-"  --exposure E           PNG exposure in stops (default: render.exposure, else 0)\n"
-"  --stats FILE.json      write the time (split by stage), the counts (shader\n"
-"                         programs compiled among them), the backend and GL's\n"
-"                         renderer and vendor strings as JSON\n"
-"  -q, --quiet            no messages but errors\n"
-"  -h, --help             show this help\n"
-"\n"
-"Exit status: 0 on success, 2 for bad input (arguments, scene), 1 otherwise.\n",
-          GS_DEFAULT_PLANES_LOCAL, GS_DEFAULT_PLANES_DIRECTIONAL,
-          GS_DEFAULT_LATTICE, GS_DEFAULT_LATTICE, GS_DEFAULT_SHADOW_LOCAL,
-          GS_DEFAULT_SHADOW_DIRECTIONAL, GS_DEFAULT_XI == SH_XI_EXACT ? "exact" : "lattice",
-          GS_DEFAULT_JITTER ? "on" : "off", GS_DEFAULT_SUB_ANGLE_DEG,
-          GS_DEFAULT_SUB_TEXELS);
-}
-
-#define MAX_OUTPUTS 8
+#define STR_(x) #x
+#define STR(x) STR_(x)
 
 typedef struct args {
-  const char *scene, *stats;
-  const char *outputs[MAX_OUTPUTS];
-  int noutputs;
-  long planes, lattice_u, lattice_v, light_map_res, shadow_map_res;
-  sh_xi_mode xi;
-  int jitter; /* -1: not given */
-  gs_backend backend;
-  double exposure, sub_angle, sub_texels;
-  int has_exposure, quiet;
+  sh_cli_list outputs;
+  const char *stats;
+  long width, height;
+  double exposure;
+  int quiet, parents;
 } args;
 
-/* Returns -1 to go on, else an exit status. */
-static int parse_args(int argc, char **argv, args *a) {
-  memset(a, 0, sizeof *a);
-  a->jitter = -1;
-  a->xi = SH_XI_DEFAULT;
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    int ok = 1;
-    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(o, "-q") || !strcmp(o, "--quiet")) {
-      a->quiet = 1;
-      continue;
-    } else if (!strcmp(o, "--jitter") || !strcmp(o, "--no-jitter")) {
-      a->jitter = !strcmp(o, "--jitter");
-      continue;
-    } else if (o[0] == '-' && o[1] != '\0' && !v) {
-      fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
-      return 2;
-    } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
-      if (a->noutputs == MAX_OUTPUTS) {
-        fprintf(stderr, "%s: at most %d outputs\n", TOOL, MAX_OUTPUTS);
-        return 2;
-      }
-      a->outputs[a->noutputs++] = v;
-    } else if (!strcmp(o, "--stats")) {
-      a->stats = v;
-    } else if (!strcmp(o, "--planes")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 100000, &a->planes);
-    } else if (!strcmp(o, "--lattice")) {
-      const char *v2 = i + 2 < argc ? argv[i + 2] : NULL;
-      ok = sh_cli_int(TOOL, "--lattice NU", v, 2, 4096, &a->lattice_u) &&
-           sh_cli_int(TOOL, "--lattice NV", v2, 2, 4096, &a->lattice_v);
-      i++;
-    } else if (!strcmp(o, "--light-map-res")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 16384, &a->light_map_res);
-    } else if (!strcmp(o, "--shadow-map-res")) {
-      ok = sh_cli_int(TOOL, o, v, 1, 16384, &a->shadow_map_res);
-    } else if (!strcmp(o, "--xi")) {
-      if (!strcmp(v, "lattice")) a->xi = SH_XI_LATTICE;
-      else if (!strcmp(v, "exact")) a->xi = SH_XI_EXACT;
-      else {
-        fprintf(stderr, "%s: --xi expects lattice or exact, got '%s'\n", TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(o, "--backend")) {
-      if (!strcmp(v, "auto")) a->backend = GS_BACKEND_AUTO;
-      else if (!strcmp(v, "egl")) a->backend = GS_BACKEND_EGL;
-      else if (!strcmp(v, "osmesa")) a->backend = GS_BACKEND_OSMESA;
-      else {
-        fprintf(stderr, "%s: --backend expects auto, egl or osmesa, got '%s'\n",
-                TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(o, "--sub-angle")) {
-      ok = sh_cli_double(TOOL, o, v, &a->sub_angle);
-      if (ok && !(a->sub_angle > 0 && a->sub_angle <= 30)) {
-        fprintf(stderr, "%s: --sub-angle expects degrees in (0, 30], got '%s'\n", TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(o, "--sub-texels")) {
-      ok = sh_cli_double(TOOL, o, v, &a->sub_texels);
-      if (ok && !(a->sub_texels > 0 && a->sub_texels <= 1e6)) {
-        fprintf(stderr, "%s: --sub-texels expects a number in (0, 1e6], got '%s'\n", TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(o, "--exposure")) {
-      ok = sh_cli_double(TOOL, o, v, &a->exposure);
-      a->has_exposure = 1;
-    } else {
-      const char **operands[] = {&a->scene};
-      if (!sh_cli_operand(TOOL, o, operands, 1)) return 2;
-      continue;
-    }
-    if (!ok) return 2;
-    i++;
-  }
-  if (!sh_cli_check_render_outputs(TOOL, a->scene, a->outputs, a->noutputs))
-    return 2;
-  return -1;
+#define FIELD(f) offsetof(args, f)
+#define RENDERER(name, key_, meta, text)                                      \
+  {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key_, NULL, NULL, text}
+
+static sh_cli_option options[] = {
+    {"output", 'o', SH_CLI_LIST, "FILE", 0, FIELD(outputs), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL,
+     "output image: .exr (linear 32-bit float radiance, with the tool, "
+     "version, settings and scene in its header) or .png (sRGB of radiance "
+     "* 2^exposure, clamped); repeat to write several formats from one "
+     "render"},
+    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL,
+     "make the outputs' directories (and their parents) if missing; "
+     "without it a missing directory is an error before rendering"},
+    {"width", 0, SH_CLI_INT, "W", 1, FIELD(width), 1, 65536, 0, 0, NULL, NULL,
+     NULL, NULL,
+     "image width in pixels instead of the scene's (the height follows the "
+     "scene's aspect unless given)"},
+    {"height", 0, SH_CLI_INT, "H", 1, FIELD(height), 1, 65536, 0, 0, NULL,
+     NULL, NULL, NULL, "image height in pixels instead of the scene's"},
+    RENDERER("planes", "planes", "N",
+             "virtual planes per light (default: render.planes, else "
+             STR(GS_DEFAULT_PLANES_LOCAL) " for point and spot lights, "
+             STR(GS_DEFAULT_PLANES_DIRECTIONAL) " for directional ones)"),
+    {"lattice", 0, SH_CLI_SETTER, "NU NV", 2, 0, 0, 0, 0, 0, NULL, "lattice",
+     NULL, NULL,
+     "lattice points per plane for xi (default: render.lattice, else "
+     STR(GS_DEFAULT_LATTICE) " " STR(GS_DEFAULT_LATTICE) ")"},
+    RENDERER("light-map-res", "light_map_res", "R",
+             "resample light maps to R x R (default: render.light_map_res, "
+             "else each map's own size)"),
+    RENDERER("shadow-map-res", "shadow_map_res", "S",
+             "shadow-map size (default: render.shadow_map_res, else "
+             STR(GS_DEFAULT_SHADOW_LOCAL) " for point and spot lights, "
+             STR(GS_DEFAULT_SHADOW_DIRECTIONAL) " for directional ones)"),
+    RENDERER("xi", "xi", NULL,
+             "xi on the lattice, interpolated (the paper's method), or per "
+             "fragment; the scene's render.xi comes before the default"),
+    {"jitter", 0, SH_CLI_SETTER, NULL, 0, 0, 0, 0, 0, 0, NULL, "jitter", "1",
+     NULL,
+     "per-pixel jitter of the sample depths (default: render.jitter, else "
+     "off)"},
+    {"no-jitter", 0, SH_CLI_SETTER, NULL, 0, 0, 0, 0, 0, 0, NULL, "jitter",
+     "0", NULL, "no jitter"},
+    RENDERER("sub-angle", "sub_angle_deg", "DEG",
+             "point and spot lights: one sample per DEG degrees that a "
+             "plane's part of a ray subtends at the light (default "
+             STR(GS_DEFAULT_SUB_ANGLE_DEG) ")"),
+    RENDERER("sub-texels", "sub_texels", "T",
+             "lights with a map (a spot's gobo, a window): one sample per T "
+             "map texels a plane's part of a ray crosses (default "
+             STR(GS_DEFAULT_SUB_TEXELS) ")"),
+    RENDERER("backend", "backend", NULL,
+             "where the GL context comes from (default auto: EGL's devices, "
+             "a GPU first, then EGL surfaceless, then OSMesa; the environment "
+             "variable SHAFTS_GL_BACKEND narrows auto)"),
+    {"exposure", 0, SH_CLI_NUMBER, "E", 1, FIELD(exposure), -INFINITY,
+     INFINITY, 0, 0, NULL, NULL, NULL, NULL,
+     "PNG exposure in stops (default: render.exposure, else 0)"},
+    {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, FIELD(stats), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL,
+     "write the settings used, the time (split by stage), the counts "
+     "(shader programs compiled among them), the backend and GL's renderer "
+     "and vendor strings as JSON"},
+    {"quiet", 'q', SH_CLI_FLAG, NULL, 0, FIELD(quiet), 0, 0, 0, 1, NULL, NULL,
+     NULL, NULL, "no messages but errors"},
+};
+
+static sh_status set_option(void *target, const char *key, const char *value,
+                            sh_error *err) {
+  return gs_options_set(target, key, value, err);
 }
 
-/* The --stats record: the frame's statistics (gs_stats_json) with the tool,
- * the scene and the options. */
-static sh_stats *stats_record(const args *a, const gs_options *o,
+/* The settings a render used: the --stats record's first keys and the
+ * EXR header's shafts:settings. Every value is a number or a name. */
+static void put_settings(sh_stats *s, const sh_scene *scene,
+                         const gs_options *o, const gs_stats *st) {
+  sh_stats_num(s, "width", scene->camera.width);
+  sh_stats_num(s, "height", scene->camera.height);
+  int kinds[2] = {0, 0}; /* local, directional lights present */
+  for (int i = 0; i < scene->nlights; i++)
+    kinds[scene->lights[i].type == SH_LIGHT_DIRECTIONAL] = 1;
+  if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
+  if (o->shadow_map_res) sh_stats_num(s, "shadow_map_res", o->shadow_map_res);
+  if (kinds[0]) {
+    sh_stats_num(s, "planes_local", gs_light_planes(o, SH_LIGHT_POINT));
+    sh_stats_num(s, "shadow_map_res_local",
+                 gs_light_shadow_map_res(o, SH_LIGHT_POINT));
+  }
+  if (kinds[1]) {
+    sh_stats_num(s, "planes_directional",
+                 gs_light_planes(o, SH_LIGHT_DIRECTIONAL));
+    sh_stats_num(s, "shadow_map_res_directional",
+                 gs_light_shadow_map_res(o, SH_LIGHT_DIRECTIONAL));
+  }
+  sh_stats_num(s, "lattice_u", o->lattice_u);
+  sh_stats_num(s, "lattice_v", o->lattice_v);
+  sh_stats_num(s, "light_map_res", o->light_map_res);
+  sh_stats_str(s, "xi", gs_option_name("xi", o->xi));
+  sh_stats_num(s, "jitter", o->jitter);
+  sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
+  sh_stats_num(s, "sub_texels", o->sub_texels);
+  if (st) sh_stats_str(s, "backend", st->backend);
+}
+
+/* The --stats record: the frame's statistics (gs_stats_json) with the
+ * tool, the scene and the settings. */
+static sh_stats *stats_record(const char *scene_path, const char *settings,
                               const gs_stats *st) {
   size_t n = gs_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
   if (text) gs_stats_json(st, text, n + 1);
   sh_stats *s = sh_stats_from_json(text);
   free(text);
+  sh_stats *set = sh_stats_from_json(settings);
   sh_stats_str(s, "tool", TOOL);
-  sh_stats_str(s, "scene", a->scene);
-  if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
-  else sh_stats_str(s, "planes_per_light", "by light kind");
-  sh_stats_num(s, "lattice_u", o->lattice_u);
-  sh_stats_num(s, "lattice_v", o->lattice_v);
-  sh_stats_num(s, "light_map_res", o->light_map_res);
-  if (o->shadow_map_res) sh_stats_num(s, "shadow_map_res", o->shadow_map_res);
-  else sh_stats_str(s, "shadow_map_res", "by light kind");
-  sh_stats_str(s, "xi", o->xi == SH_XI_EXACT ? "exact" : "lattice");
-  sh_stats_num(s, "jitter", o->jitter);
-  sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
-  sh_stats_num(s, "sub_texels", o->sub_texels);
+  sh_stats_str(s, "scene", scene_path);
+  sh_stats_merge(s, set);
+  sh_stats_free(set);
   return s;
 }
 
-int main(int argc, char **argv) {
-  args a;
-  int rc = parse_args(argc, argv, &a);
-  if (rc >= 0) return rc;
-
+/* Writes the images and the statistics; returns the exit status. */
+static int finish(const args *a, const char *scene_path, const sh_scene *scene,
+                  const gs_options *o, const sh_image *img,
+                  const gs_stats *st) {
   sh_error err;
-  sh_scene *scene = NULL;
-  if (sh_scene_load(a.scene, &scene, &err) != SH_OK)
-    return sh_cli_report(TOOL, &err);
-  if (scene->nlights == 0 && !a.quiet)
-    fprintf(stderr, "%s: warning: the scene has no lights; the image is "
-                    "black but for emission and background\n", TOOL);
-
-  gs_options opt = gs_options_defaults(scene);
-  if (a.planes) opt.planes = (int)a.planes;
-  if (a.lattice_u) {
-    opt.lattice_u = (int)a.lattice_u;
-    opt.lattice_v = (int)a.lattice_v;
+  sh_stats *settings = sh_stats_new();
+  put_settings(settings, scene, o, st);
+  char *settings_text = sh_stats_text(settings);
+  sh_stats_free(settings);
+  double exposure =
+      isnan(a->exposure) ? scene->render.exposure : a->exposure;
+  sh_status status =
+      sh_cli_write_images(TOOL, &a->outputs, img, exposure, "plane-sweep",
+                          settings_text, scene_path, &err);
+  if (status == SH_OK && a->stats) {
+    sh_stats *s = stats_record(scene_path, settings_text, st);
+    status = sh_stats_write(s, a->stats, &err);
+    sh_stats_free(s);
   }
-  if (a.light_map_res) opt.light_map_res = (int)a.light_map_res;
-  if (a.shadow_map_res) opt.shadow_map_res = (int)a.shadow_map_res;
-  if (a.xi != SH_XI_DEFAULT) opt.xi = a.xi;
-  if (a.jitter >= 0) opt.jitter = a.jitter;
-  if (a.sub_angle > 0) opt.sub_angle_deg = a.sub_angle;
-  if (a.sub_texels > 0) opt.sub_texels = a.sub_texels;
-  opt.backend = a.backend;
-  double exposure = a.has_exposure ? a.exposure : scene->render.exposure;
+  free(settings_text);
+  if (status != SH_OK) return sh_cli_report(TOOL, &err);
+  if (!a->quiet) {
+    fprintf(stderr, "%s: wrote", TOOL);
+    for (int k = 0; k < a->outputs.count; k++)
+      fprintf(stderr, "%s %s", k ? "," : "", a->outputs.items[k]);
+    fprintf(stderr, " (%dx%d, rendered in %.3f s: %.3f s a frame + %.3f s "
+                    "setup)\n",
+            img->width, img->height, st->seconds + st->setup_seconds,
+            st->seconds, st->setup_seconds);
+  }
+  return SH_EXIT_OK;
+}
+
+int main(int argc, char **argv) {
+  for (size_t i = 0; i < sizeof options / sizeof *options; i++)
+    if (!strcmp(options[i].name, "xi"))
+      options[i].def = gs_option_name("xi", GS_DEFAULT_XI);
+  /* Options are checked while parsing on the built-in defaults (a scene
+   * without render keys), and applied once the scene is loaded. */
+  sh_scene no_keys;
+  memset(&no_keys, 0, sizeof no_keys);
+  gs_options scratch = gs_options_defaults(&no_keys);
+  const sh_cli_tool tool = {
+      TOOL, "SCENE.json -o OUT.exr|OUT.png [options]",
+      "Renders a scene (docs/scene-format.md) with shafts of light by the "
+      "plane-sweep\nmethod of Dobashi, Yamamoto and Nishita (2000) on OpenGL "
+      "4.5, through EGL (a\nGPU if there is one, else llvmpipe on the CPU) or "
+      "OSMesa. Options override the\nscene's render keys; docs/gl_shafts.md "
+      "has the details.",
+      options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
+      set_option, &scratch, gs_option_choices};
+  args a = {.exposure = NAN};
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
+  if (a.outputs.count == 0) {
+    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", TOOL);
+    return SH_EXIT_BAD_INPUT;
+  }
+  for (int k = 0; k < a.outputs.count; k++)
+    if (!sh_cli_check_output(TOOL, "-o", a.outputs.items[k], "exr,png",
+                             a.parents))
+      return SH_EXIT_BAD_INPUT;
+  if (a.stats && !sh_cli_check_output(TOOL, "--stats", a.stats, NULL, a.parents))
+    return SH_EXIT_BAD_INPUT;
+
+  const char *scene_path = parsed.operands[0];
+  sh_scene *scene = NULL;
+  if ((rc = sh_cli_load_scene(TOOL, scene_path, a.quiet, &scene))) return rc;
+  sh_cli_resize(scene, a.width, a.height);
+  sh_error err;
+  gs_options opt = gs_options_defaults(scene);
+  if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {
+    sh_scene_free(scene);
+    return sh_cli_report(TOOL, &err);
+  }
   if (!a.quiet)
     for (int i = 0; i < scene->nmaterials; i++) {
       const sh_material *m = &scene->materials[i];
-      if (!sh_is_black(m->reflect) || !sh_is_black(m->transmit)) {
+      if (!sh_is_black(m->reflect) || !sh_is_black(m->transmit))
         fprintf(stderr, "%s: warning: material '%s' reflects or transmits; "
                         "gl_shafts draws it opaque without reflections\n",
                 TOOL, m->name);
-      }
     }
 
   sh_image img = {0};
   gs_stats st;
-  sh_status status = gs_render(scene, &opt, &img, &st, &err);
-  for (int k = 0; status == SH_OK && k < a.noutputs; k++)
-    status = sh_image_write(a.outputs[k], &img, exposure, &err);
-  rc = 0;
-  if (status != SH_OK) {
+  if (gs_render(scene, &opt, &img, &st, &err) != SH_OK)
     rc = sh_cli_report(TOOL, &err);
-  } else if (a.stats) {
-    sh_stats *s = stats_record(&a, &opt, &st);
-    if (sh_stats_write(s, a.stats, &err) != SH_OK) rc = sh_cli_report(TOOL, &err);
-    sh_stats_free(s);
-  }
-  if (rc == 0 && !a.quiet)
-    for (int k = 0; k < a.noutputs; k++)
-      fprintf(stderr, "%s: wrote %s (%dx%d, %.3f s a frame + %.3f s setup)\n",
-              TOOL, a.outputs[k], img.width, img.height, st.seconds,
-              st.setup_seconds);
+  else
+    rc = finish(&a, scene_path, scene, &opt, &img, &st);
   sh_image_free(&img);
   sh_scene_free(scene);
   return rc;

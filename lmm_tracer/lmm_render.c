@@ -20,31 +20,37 @@ static const char *const scheme_names[] = {"straight", "refract-trace",
                                            "refract-both", NULL};
 static const char *const volume_names[] = {"mesh", "exact", NULL};
 
-/* The options by name, with their limits (sh_options.h). */
+/* One row per option (sh_options.h): its name, where it lives, its kind
+ * and limits or choices, and the value that means "not given". */
 #define OPT(field) #field, offsetof(lmm_render_options, field)
 static const sh__opt options[] = {
-    {OPT(mode), SH__OPT_CHOICE, 0, 0, 0, mode_names, 0},
-    {OPT(scheme), SH__OPT_CHOICE, 0, 0, 0, scheme_names, 1},
-    {"volume", offsetof(lmm_render_options, volume_exact), SH__OPT_CHOICE, 0, 0, 0,
-     volume_names, 0},
-    {OPT(local), SH__OPT_BOOL, 0, 1, 0, NULL, 0},
-    {OPT(refined), SH__OPT_BOOL, 0, 1, 0, NULL, 0},
-    {OPT(mesh_step), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0},
-    {OPT(kl), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0},
-    {OPT(caustic_rays), SH__OPT_LLONG, 1, 1099511627776.0, 0, NULL, 0},
-    {OPT(area_radius), SH__OPT_DOUBLE, 0, INFINITY, 0, NULL, 0},
-    {OPT(area_samples), SH__OPT_INT, 1, 1 << 20, 0, NULL, 0},
-    {OPT(spp), SH__OPT_INT, 1, 1 << 24, 0, NULL, 0},
-    {OPT(max_depth), SH__OPT_INT, 0, 64, 0, NULL, 0},
-    {OPT(seed), SH__OPT_LLONG, 0, 4294967295.0, 0, NULL, 0},
-    {OPT(threads), SH__OPT_INT, 0, 1024, 0, NULL, 0},
+    {OPT(mode), SH__OPT_CHOICE, 0, 0, 0, mode_names, 0, 0, 0, 0},
+    {OPT(scheme), SH__OPT_CHOICE, 0, 0, 0, scheme_names, 1, 1, SH_SCHEME_DEFAULT, 0},
+    {"volume", offsetof(lmm_render_options, volume_exact), SH__OPT_CHOICE, 0,
+     0, 0, volume_names, 0, 0, 0, 0},
+    {OPT(local), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
+    {OPT(refined), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
+    {OPT(mesh_step), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0, 1, 0, 0},
+    {OPT(kl), SH__OPT_DOUBLE, 0, INFINITY, 1, NULL, 0, 1, 0, 0},
+    {OPT(caustic_rays), SH__OPT_LLONG, 1, 1099511627776.0, 0, NULL, 0, 1, 0, 0},
+    {OPT(area_radius), SH__OPT_DOUBLE, 0, INFINITY, 0, NULL, 0, 1, -1, 0},
+    {OPT(area_samples), SH__OPT_INT, 1, 1 << 20, 0, NULL, 0, 1, 0, 0},
+    {OPT(spp), SH__OPT_INT, 1, 1 << 24, 0, NULL, 0, 1, 0, 0},
+    {OPT(max_depth), SH__OPT_INT, 0, 64, 0, NULL, 0, 1, -1, 0},
+    {OPT(seed), SH__OPT_LLONG, 0, 4294967295.0, 0, NULL, 0, 1, -1, 0},
+    {OPT(threads), SH__OPT_INT, 0, 1024, 0, NULL, 0, 0, 0, 0},
 };
 #undef OPT
+enum { NOPTIONS = sizeof options / sizeof *options };
 
 sh_status lmm_render_options_set(lmm_render_options *opt, const char *key,
                                  const char *value, sh_error *err) {
-  return sh__options_set(options, sizeof options / sizeof *options, opt, key,
-                         value, err);
+  return sh__options_set(options, NOPTIONS, opt, key, value, err);
+}
+
+const char *const *lmm_render_option_choices(const char *key) {
+  const sh__opt *d = sh__options_find(options, NOPTIONS, key);
+  return d ? d->choices : NULL;
 }
 
 void lmm_render_options_init(lmm_render_options *opt) {
@@ -57,6 +63,8 @@ void lmm_render_options_init(lmm_render_options *opt) {
 
 sh_status lmm_render_options_check(const lmm_render_options *opt,
                                    sh_error *err) {
+  sh_status st = sh__options_check(options, NOPTIONS, opt, err);
+  if (st != SH_OK) return st;
   if (opt->refined && opt->mode != LMM_MODE_LMM)
     return sh_error_set(err, SH_ERR_ARG,
                         "refined needs mode lmm and scheme refract-both");
@@ -168,6 +176,8 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
     stats->closest_rays = rs.closest_rays;
     stats->occlusion_rays = rs.occlusion_rays;
     stats->medium_samples = rs.medium_samples;
+    stats->noise_rel_rms = rs.noise_rel_rms;
+    stats->noise_pixels = rs.noise_pixels;
     if (method) {
       stats->has_lmm = 1;
       stats->mesh_step = h;
@@ -205,6 +215,10 @@ size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
   sh__json_num(o, "closest_rays", (double)s->closest_rays);
   sh__json_num(o, "occlusion_rays", (double)s->occlusion_rays);
   sh__json_num(o, "medium_samples", (double)s->medium_samples);
+  if (s->noise_pixels > 0) {
+    sh__json_num(o, "noise_rel_rms_estimate", s->noise_rel_rms);
+    sh__json_num(o, "noise_pixels", (double)s->noise_pixels);
+  }
   if (s->has_lmm) {
     const lmm_stats *l = &s->lmm;
     sh__json_num(o, "mesh_step", s->mesh_step);

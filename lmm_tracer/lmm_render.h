@@ -67,6 +67,10 @@ typedef struct lmm_render_stats {
   double seconds;        /* the whole call: set-up and render */
   double render_seconds; /* the tracing alone */
   uint64_t camera_rays, closest_rays, occlusion_rays, medium_samples;
+  double noise_rel_rms;  /* the image's own noise, estimated
+                            (sh_reference_stats); 0 when not estimated */
+  long noise_pixels;     /* pixels rendered twice for it (0: lmm and
+                            sphere-light modes, whose hooks keep caches) */
   int has_lmm;           /* lmm mode: the fields below are filled */
   double mesh_step, kl;
   lmm_stats lmm;
@@ -81,6 +85,10 @@ void lmm_render_options_init(lmm_render_options *opt);
  * key, the allowed values and what was given. */
 sh_status lmm_render_options_set(lmm_render_options *opt, const char *key,
                                  const char *value, sh_error *err);
+
+/* The names an option takes (NULL-terminated: "mode", "scheme",
+ * "volume"), or NULL for an option that takes a number. */
+const char *const *lmm_render_option_choices(const char *key);
 
 /* The checks that need no scene (refined needs lmm mode; area_radius needs
  * whitted mode). lmm_render makes them too. */

@@ -1,198 +1,231 @@
 /* lmm_tracer: the project's ray tracer. In reference mode it is the ground
  * truth the other renderers are judged against; in whitted mode it is the
  * RRTA baseline of Debelov et al. 2008; in lmm mode it renders soft shadows
- * by the light meshes method. */
+ * by the light meshes method. The command-line face of lmm_render.h: the
+ * renderer's options are set by name (lmm_render_options_set), so their
+ * limits and choices are the renderer's own. */
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lmm_render.h"
 #include "sh_cli.h"
-#include "sh_file.h"
-#include "sh_image.h"
 #include "sh_parse.h"
 #include "sh_progress.h"
 
 static const char *const TOOL = "lmm_tracer";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: lmm_tracer SCENE.json -o OUT.exr|OUT.png [options]\n"
-"\n"
-"Renders a scene (docs/scene-format.md) by Whitted ray tracing with single\n"
-"scattering in the medium; lmm mode softens shadows by the light meshes\n"
-"method (docs/lmm.md).\n"
-"\n"
-"options:\n"
-"  -o, --output FILE   output image: .exr (linear 32-bit float radiance) or\n"
-"                      .png (sRGB of radiance * 2^exposure, clamped);\n"
-"                      repeat to write several formats from one render\n"
-"  --mode MODE         reference (default): the converged reference renderer;\n"
-"                      whitted: the same tracer as the RRTA baseline;\n"
-"                      lmm: the light meshes method\n"
-"  --scheme S          straight | refract-trace (default) | refract-both:\n"
-"                      where refraction is followed (refract-both: lmm only)\n"
-"  --local             formula 1: no mirror rays, no refraction\n"
-"  --mesh-step H       lmm: mesh step (default: render.mesh_step, else 1/100\n"
-"                      of the shapes' diagonal)\n"
-"  --kl KL             lmm: interpolation radius r = H * KL (default 2)\n"
-"  --caustic-rays N    lmm, refract-both: rays per light and shape (200000)\n"
-"  --refined           lmm, refract-both: the refined variant of section 5\n"
-"  --lmm-volume M      lmm with a medium: mesh (default) interpolates the\n"
-"                      volumetric shadows from the mesh; exact traces them\n"
-"  --area-radius R     whitted: point and spot lights become spheres of\n"
-"                      radius R, sampled by shadow rays\n"
-"  --area-samples N    whitted with --area-radius: shadow rays per light (16)\n"
-"  --spp N             in-scattering samples per ray segment and light\n"
-"                      (default: the scene's render.spp, else 16)\n"
-"  --max-depth N       reflection/refraction depth (default: render.max_depth, else 5)\n"
-"  --seed S            random seed (default: render.seed, else 0)\n"
-"  --threads N         worker threads (default: one per CPU)\n"
-"  --exposure E        PNG exposure in stops (default: render.exposure, else 0)\n"
-"  --stats FILE.json   write time, rays, samples and method statistics\n"
-"  -q, --quiet         no progress bar\n"
-"  -h, --help          show this help\n"
-"\n"
-"Exit status: 0 on success, 2 for bad input (arguments, scene), 1 otherwise.\n");
-}
-
-#define MAX_OUTPUTS 8
-
 typedef struct args {
-  const char *scene, *stats;
-  const char *outputs[MAX_OUTPUTS];
-  int noutputs;
-  int quiet, has_exposure;
+  sh_cli_list outputs;
+  const char *stats;
+  long width, height;
   double exposure;
-  lmm_render_options render;
+  int quiet, parents;
 } args;
 
-/* The command line's value options and the lmm_render option each sets
- * (its limits and choices are lmm_render_options_set's). */
-static const char *const value_options[][2] = {
-    {"--mode", "mode"},
-    {"--scheme", "scheme"},
-    {"--lmm-volume", "volume"},
-    {"--mesh-step", "mesh_step"},
-    {"--kl", "kl"},
-    {"--caustic-rays", "caustic_rays"},
-    {"--area-radius", "area_radius"},
-    {"--area-samples", "area_samples"},
-    {"--spp", "spp"},
-    {"--max-depth", "max_depth"},
-    {"--seed", "seed"},
-    {"--threads", "threads"},
+#define FIELD(f) offsetof(args, f)
+#define RENDERER(name, key, meta, text)                                       \
+  {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key, NULL, NULL, text}
+
+static const sh_cli_option options[] = {
+    {"output", 'o', SH_CLI_LIST, "FILE", 0, FIELD(outputs), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL,
+     "output image: .exr (linear 32-bit float radiance, with the tool, "
+     "version, mode, settings and scene in its header) or .png (sRGB of "
+     "radiance * 2^exposure, clamped); repeat to write several formats from "
+     "one render"},
+    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL,
+     "make the outputs' directories (and their parents) if missing; "
+     "without it a missing directory is an error before rendering"},
+    {"width", 0, SH_CLI_INT, "W", 1, FIELD(width), 1, 65536, 0, 0, NULL, NULL,
+     NULL, NULL,
+     "image width in pixels instead of the scene's (the height follows the "
+     "scene's aspect unless given)"},
+    {"height", 0, SH_CLI_INT, "H", 1, FIELD(height), 1, 65536, 0, 0, NULL,
+     NULL, NULL, NULL, "image height in pixels instead of the scene's"},
+    RENDERER("mode", "mode", NULL,
+             "reference (default): the converged reference renderer; "
+             "whitted: the same tracer as the RRTA baseline; lmm: the light "
+             "meshes method"),
+    RENDERER("scheme", "scheme", NULL,
+             "where refraction is followed (refract-both: lmm only; "
+             "default: render.scheme, else refract-trace)"),
+    {"local", 0, SH_CLI_SETTER, NULL, 0, 0, 0, 0, 0, 0, NULL, "local", "1",
+     NULL, "formula 1: no mirror rays, no refraction"},
+    RENDERER("mesh-step", "mesh_step", "H",
+             "lmm: mesh step (default: render.mesh_step, else 1/100 of the "
+             "shapes' diagonal)"),
+    RENDERER("kl", "kl", "KL",
+             "lmm: interpolation radius r = H * KL (default: render.kl, else "
+             "2)"),
+    RENDERER("caustic-rays", "caustic_rays", "N",
+             "lmm, refract-both: rays per light and shape (default 200000)"),
+    {"refined", 0, SH_CLI_SETTER, NULL, 0, 0, 0, 0, 0, 0, NULL, "refined", "1",
+     NULL, "lmm, refract-both: the refined variant of section 5"},
+    RENDERER("lmm-volume", "volume", NULL,
+             "lmm with a medium: mesh (default) interpolates the volumetric "
+             "shadows from the mesh; exact traces them"),
+    RENDERER("area-radius", "area_radius", "R",
+             "whitted: point and spot lights become spheres of radius R, "
+             "sampled by shadow rays"),
+    RENDERER("area-samples", "area_samples", "N",
+             "whitted with --area-radius: shadow rays per light (default 16)"),
+    RENDERER("spp", "spp", "N",
+             "in-scattering samples per ray segment and light (default: the "
+             "scene's render.spp, else 16)"),
+    RENDERER("max-depth", "max_depth", "N",
+             "reflection/refraction depth (default: render.max_depth, else "
+             "5)"),
+    RENDERER("seed", "seed", "S", "random seed (default: render.seed, else 0)"),
+    RENDERER("threads", "threads", "N",
+             "worker threads (default: one per CPU)"),
+    {"exposure", 0, SH_CLI_NUMBER, "E", 1, FIELD(exposure), -INFINITY,
+     INFINITY, 0, 0, NULL, NULL, NULL, NULL,
+     "PNG exposure in stops (default: render.exposure, else 0)"},
+    {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, FIELD(stats), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL,
+     "write the settings used, time, rays, samples, the reference's noise "
+     "estimate and the method's statistics as JSON"},
+    {"quiet", 'q', SH_CLI_FLAG, NULL, 0, FIELD(quiet), 0, 0, 0, 1, NULL, NULL,
+     NULL, NULL, "no progress bar, no messages but errors"},
 };
 
-static const char *render_key(const char *flag) {
-  for (size_t i = 0; i < sizeof value_options / sizeof *value_options; i++)
-    if (!strcmp(flag, value_options[i][0])) return value_options[i][1];
-  return NULL;
+static sh_status set_option(void *target, const char *key, const char *value,
+                            sh_error *err) {
+  return lmm_render_options_set(target, key, value, err);
 }
 
-/* Returns -1 to go on, else an exit status. */
-static int parse_args(int argc, char **argv, args *a) {
-  sh_error err;
-  memset(a, 0, sizeof *a);
-  lmm_render_options_init(&a->render);
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    const char *key = render_key(o);
-    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(o, "-q") || !strcmp(o, "--quiet")) {
-      a->quiet = 1;
-      continue;
-    } else if (!strcmp(o, "--local") || !strcmp(o, "--refined")) {
-      lmm_render_options_set(&a->render, o + 2, "1", NULL);
-      continue;
-    } else if (o[0] == '-' && o[1] != '\0' && !v) {
-      fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
-      return 2;
-    } else if (key) {
-      if (lmm_render_options_set(&a->render, key, v, &err) != SH_OK) {
-        fprintf(stderr, "%s: %s: %s\n", TOOL, o, err.message);
-        return 2;
-      }
-    } else if (!strcmp(o, "-o") || !strcmp(o, "--output")) {
-      if (a->noutputs == MAX_OUTPUTS) {
-        fprintf(stderr, "%s: at most %d outputs\n", TOOL, MAX_OUTPUTS);
-        return 2;
-      }
-      a->outputs[a->noutputs++] = v;
-    } else if (!strcmp(o, "--stats")) {
-      a->stats = v;
-    } else if (!strcmp(o, "--exposure")) {
-      if (!sh_cli_double(TOOL, o, v, &a->exposure)) return 2;
-      a->has_exposure = 1;
-    } else {
-      const char **operands[] = {&a->scene};
-      if (!sh_cli_operand(TOOL, o, operands, 1)) return 2;
-      continue;
-    }
-    i++;
+/* The settings a render used (the EXR header's shafts:settings). */
+static char *settings_json(const lmm_render_stats *st) {
+  static const char *const schemes[] = {"default", "straight", "refract-trace",
+                                        "refract-both"};
+  sh_stats *s = sh_stats_new();
+  sh_stats_str(s, "scheme", schemes[st->scheme]);
+  sh_stats_num(s, "width", st->width);
+  sh_stats_num(s, "height", st->height);
+  sh_stats_num(s, "spp", st->spp);
+  sh_stats_num(s, "max_depth", st->max_depth);
+  sh_stats_num(s, "seed", (double)st->seed);
+  if (st->has_lmm) {
+    sh_stats_num(s, "mesh_step", st->mesh_step);
+    sh_stats_num(s, "kl", st->kl);
   }
-  if (!sh_cli_check_render_outputs(TOOL, a->scene, a->outputs, a->noutputs))
-    return 2;
-  if (lmm_render_options_check(&a->render, &err) != SH_OK) {
-    fprintf(stderr, "%s: %s\n", TOOL, err.message);
-    return 2;
-  }
-  return -1;
+  char *text = sh_stats_text(s);
+  sh_stats_free(s);
+  return text;
 }
 
-/* The --stats file: lmm_render's statistics with the tool and scene. */
-static sh_status write_stats(const args *a, const lmm_render_stats *st,
-                             sh_error *err) {
+static const char *mode_name(lmm_mode mode) {
+  return mode == LMM_MODE_REFERENCE ? "reference"
+         : mode == LMM_MODE_LMM     ? "lmm"
+                                    : "whitted";
+}
+
+/* The images (with their provenance) and the --stats record: lmm_render's
+ * statistics with the tool and scene. */
+static sh_status write_outputs(const args *a, const char *scene_path,
+                               const sh_image *img, double exposure,
+                               const lmm_render_stats *st, sh_error *err) {
+  char *settings = settings_json(st);
+  sh_status status = sh_cli_write_images(TOOL, &a->outputs, img, exposure,
+                                         mode_name(st->mode), settings,
+                                         scene_path, err);
+  free(settings);
+  if (status != SH_OK || !a->stats) return status;
   size_t n = lmm_render_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
-  if (text) lmm_render_stats_json(st, text, n + 1);
+  if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  lmm_render_stats_json(st, text, n + 1);
   sh_stats *s = sh_stats_from_json(text);
-  free(text);
   sh_stats_str(s, "tool", TOOL);
-  sh_stats_str(s, "scene", a->scene);
-  sh_status status = sh_stats_write(s, a->stats, err);
+  sh_stats_str(s, "scene", scene_path);
+  status = sh_stats_write(s, a->stats, err);
   sh_stats_free(s);
+  free(text);
   return status;
 }
 
-int main(int argc, char **argv) {
-  args a;
-  int rc = parse_args(argc, argv, &a);
-  if (rc >= 0) return rc;
-  rc = 0;
+/* The reference is judged against at 1% (docs/validation.md): a noisier
+ * reference measures its own noise. */
+#define NOISE_WARNING 0.01
 
+static void warn_noise(const lmm_render_stats *st) {
+  if (st->mode != LMM_MODE_REFERENCE || st->noise_rel_rms <= NOISE_WARNING)
+    return;
+  double ratio = st->noise_rel_rms / (NOISE_WARNING / 2);
+  fprintf(stderr,
+          "%s: warning: this reference's own noise is about %.2g%% (relative "
+          "RMS, estimated from %ld pixels rendered twice); errors measured "
+          "against it below about that level are its noise; --spp %.0f "
+          "brings it to %.2g%% or less (it falls at least as 1/sqrt(spp))\n",
+          TOOL, 100 * st->noise_rel_rms, st->noise_pixels,
+          ceil(st->spp * ratio * ratio), 100 * NOISE_WARNING / 2);
+}
+
+int main(int argc, char **argv) {
+  lmm_render_options opt, scratch;
+  lmm_render_options_init(&opt);
+  lmm_render_options_init(&scratch);
+  const sh_cli_tool tool = {
+      TOOL, "SCENE.json -o OUT.exr|OUT.png [options]",
+      "Renders a scene (docs/scene-format.md) by Whitted ray tracing with "
+      "single\nscattering in the medium; lmm mode softens shadows by the "
+      "light meshes\nmethod (docs/lmm.md).",
+      options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
+      set_option, &scratch, lmm_render_option_choices};
+  args a = {.exposure = NAN};
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
   sh_error err;
+  if (a.outputs.count == 0) {
+    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", TOOL);
+    return SH_EXIT_BAD_INPUT;
+  }
+  if (lmm_render_options_check(&scratch, &err) != SH_OK) {
+    fprintf(stderr, "%s: %s\n", TOOL, err.message);
+    return SH_EXIT_BAD_INPUT;
+  }
+  for (int k = 0; k < a.outputs.count; k++)
+    if (!sh_cli_check_output(TOOL, "-o", a.outputs.items[k], "exr,png",
+                             a.parents))
+      return SH_EXIT_BAD_INPUT;
+  if (a.stats && !sh_cli_check_output(TOOL, "--stats", a.stats, NULL, a.parents))
+    return SH_EXIT_BAD_INPUT;
+
+  const char *scene_path = parsed.operands[0];
   sh_scene *scene = NULL;
-  if (sh_scene_load(a.scene, &scene, &err) != SH_OK)
-    return sh_cli_report(TOOL, &err);
-  if (scene->nlights == 0 && !a.quiet)
-    fprintf(stderr, "%s: warning: the scene has no lights; the image is "
-                    "black but for emission and background\n", TOOL);
-  double exposure = a.has_exposure ? a.exposure : scene->render.exposure;
+  if ((rc = sh_cli_load_scene(TOOL, scene_path, a.quiet, &scene))) return rc;
+  sh_cli_resize(scene, a.width, a.height);
+  sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
+  double exposure = isnan(a.exposure) ? scene->render.exposure : a.exposure;
 
   sh_progress bar;
-  sh_progress_init(&bar,
-                   a.render.mode == LMM_MODE_REFERENCE ? "reference" : "render",
+  sh_progress_init(&bar, opt.mode == LMM_MODE_REFERENCE ? "reference" : "render",
                    !a.quiet);
-  a.render.progress = sh_progress_update;
-  a.render.progress_user = &bar;
+  opt.progress = sh_progress_update;
+  opt.progress_user = &bar;
   sh_image img = {0};
   lmm_render_stats st;
   sh_status status =
       sh_image_alloc(&img, scene->camera.width, scene->camera.height, &err);
-  if (status == SH_OK) status = lmm_render(scene, &a.render, img.rgb, &st, &err);
+  if (status == SH_OK) status = lmm_render(scene, &opt, img.rgb, &st, &err);
   sh_progress_finish(&bar);
-  for (int k = 0; status == SH_OK && k < a.noutputs; k++)
-    status = sh_image_write(a.outputs[k], &img, exposure, &err);
-  if (status == SH_OK && a.stats) status = write_stats(&a, &st, &err);
-  if (status != SH_OK) rc = sh_cli_report(TOOL, &err);
-  if (rc == 0 && !a.quiet)
-    for (int k = 0; k < a.noutputs; k++)
-      fprintf(stderr, "%s: wrote %s (%dx%d, rendered in %.2f s)\n", TOOL,
-              a.outputs[k], img.width, img.height, st.seconds);
+  if (status == SH_OK)
+    status = write_outputs(&a, scene_path, &img, exposure, &st, &err);
+  if (status != SH_OK) {
+    rc = sh_cli_report(TOOL, &err);
+  } else if (!a.quiet) {
+    warn_noise(&st);
+    fprintf(stderr, "%s: wrote", TOOL);
+    for (int k = 0; k < a.outputs.count; k++)
+      fprintf(stderr, "%s %s", k ? "," : "", a.outputs.items[k]);
+    fprintf(stderr, " (%dx%d, rendered in %.2f s)\n", img.width, img.height,
+            st.seconds);
+  }
   sh_image_free(&img);
   sh_scene_free(scene);
   return rc;

@@ -32,13 +32,25 @@ check "unknown option" 2 $?
 "$tool" "$data/point_medium.json" --to pov -o "$out/a b.pov" 2>"$dir/err"
 check "unquotable POV-Ray name" 2 $?
 grep -q "must consist of letters" "$dir/err" || { echo "FAIL: name message: $(cat "$dir/err")"; fail=1; }
-"$tool" "$dir/missing.json" --to pov -o "$out/a.pov" 2>/dev/null; check "missing scene" 1 $?
+"$tool" "$dir/missing.json" --to pov -o "$out/a.pov" 2>/dev/null; check "missing scene" 2 $?
 sed 's/"intensity"/"intensty"/' "$data/point_medium.json" >"$dir/typo.json"
 "$tool" "$dir/typo.json" --to pov -o "$out/a.pov" 2>"$dir/err"; check "misspelled key" 2 $?
 grep -q "typo.json:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
   || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
 "$tool" "$data/point_medium.json" --to pov -o "$dir/nowhere/a.pov" 2>/dev/null
-check "missing output directory" 1 $?
+check "missing output directory" 2 $?
+"$tool" "$data/point_medium.json" --to pov -o "$out/a.pov" --quality 2>"$dir/err"
+check "value missing last" 2 $?
+grep -q "quality needs a value" "$dir/err" || { echo "FAIL: value message: $(cat "$dir/err")"; fail=1; }
+version_ok "$tool"
+# --help lists every target of the table, with the file it writes.
+"$tool" --help >"$dir/help"
+for t in "--to pov" "--to blender" "--to json" "pov|blender|json"; do
+  grep -qF -- "$t" "$dir/help" || { echo "FAIL: --help lacks '$t'"; fail=1; }
+done
+"$tool" "$data/point_medium.json" --to json -o "$dir/made/by/p.json" -p; check "-p" 0 $?
+[ -s "$dir/made/by/p.json" ] || { echo "FAIL: -p did not write"; fail=1; }
+rm -rf "$dir/made"
 empty "failed exports" "$out"
 
 # --strict refuses approximations and writes nothing; exact exports pass.
@@ -52,13 +64,13 @@ empty "refused exports" "$out"
 "$tool" "$data/phase_nishita_hazy.json" --to blender -o "$out/h.py" 2>"$dir/err"
 check "approximation without --strict" 0 $?
 grep -q "warning:.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: no warning"; fail=1; }
-grep -q "Henyey-Greenstein" "$out/h.json" || { echo "FAIL: no note in the data"; fail=1; }
+grep -q "Henyey-Greenstein" "$out/h.blender.json" || { echo "FAIL: no note in the data"; fail=1; }
 
 # Good exports write every file; the script is one fixed file.
 "$tool" "$data/spot_gobo.json" --to pov -o "$out/g.pov"; check "pov export" 0 $?
 "$tool" "$data/spot_gobo.json" --to blender -o "$out/g.py"; check "blender export" 0 $?
 "$tool" "$data/spot_gobo.json" --to json -o "$out/g.json.json"; check "json export" 0 $?
-for f in h.pov h.ini h.py h.json g.pov g.ini g_map0.exr g.py g.json g_map0.exr g.json.json; do
+for f in h.pov h.ini h.py h.blender.json g.pov g.ini g_map0.exr g.py g.blender.json g_blender_map0.exr g.json.json; do
   [ -s "$out/$f" ] || { echo "FAIL: $f not written"; fail=1; }
 done
 cmp -s "$out/h.py" "$out/g.py" || { echo "FAIL: the Blender script differs between scenes"; fail=1; }

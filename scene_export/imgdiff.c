@@ -18,6 +18,7 @@
  * --map also prints a coarse grid of test/ref ratios for inspection.
  * Exit status: 0, or 2 for bad arguments, unreadable images or images of
  * different sizes. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,28 +36,37 @@ static double pixel_mean(const sh_image *img, int i) {
   return (p[0] + p[1] + p[2]) / 3.0;
 }
 
+typedef struct args {
+  const char *mask;
+  double lit;
+  int map;
+} args;
+
+static const sh_cli_option options[] = {
+    {"lit", 0, SH_CLI_NUMBER, "FRACTION", 1, offsetof(args, lit), 0, 1, 0, 0,
+     NULL, NULL, NULL, "0.01",
+     "lit: a reference pixel mean above FRACTION times the largest"},
+    {"mask", 0, SH_CLI_TEXT, "MASK.exr", 1, offsetof(args, mask), 0, 0, 0, 0,
+     NULL, NULL, NULL, NULL,
+     "take the lit region and the denominators from MASK.exr"},
+    {"map", 0, SH_CLI_FLAG, NULL, 0, offsetof(args, map), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL, "also print a coarse grid of test/ref ratios"},
+};
+
 int main(int argc, char **argv) {
-  const char *paths[3] = {NULL, NULL, NULL}; /* ref, test, mask */
-  int npaths = 0, map = 0;
-  double frac = 0.01;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--lit") && i + 1 < argc) {
-      if (!sh_cli_double("se_imgdiff", "--lit", argv[++i], &frac)) return 2;
-    } else if (!strcmp(argv[i], "--mask") && i + 1 < argc) {
-      paths[2] = argv[++i];
-    } else if (!strcmp(argv[i], "--map")) {
-      map = 1;
-    } else if (argv[i][0] != '-' && npaths < 2) {
-      paths[npaths++] = argv[i];
-    } else {
-      fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--mask MASK.exr] [--map]\n");
-      return 2;
-    }
-  }
-  if (npaths != 2) {
-    fprintf(stderr, "usage: se_imgdiff REF.exr TEST.exr [--lit FRACTION] [--mask MASK.exr] [--map]\n");
-    return 2;
-  }
+  const sh_cli_tool tool = {
+      "se_imgdiff", "REF.exr TEST.exr [options]",
+      "Compares two linear EXR images over the lit region of the first and "
+      "prints\nthe statistics as one JSON object.",
+      options, (int)(sizeof options / sizeof *options), 2, 2, NULL, NULL,
+      NULL, NULL, NULL};
+  args a = {NULL, 0.01, 0};
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
+  const char *paths[3] = {parsed.operands[0], parsed.operands[1], a.mask};
+  int map = a.map;
+  double frac = a.lit;
   sh_image img[3] = {{0}, {0}, {0}};
   sh_error err;
   int nimg = paths[2] ? 3 : 2;

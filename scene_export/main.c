@@ -1,6 +1,8 @@
 /* scene_export: one scene for POV-Ray, Blender (Cycles and EEVEE) or as the
- * normalised scene file. The work is in the library (se_pov.h,
- * se_blender.h, se_json.h); this is the command line around it. */
+ * normalised scene file. The work is in the library (the targets' table,
+ * se_run.h); this is the command line around it: --to's choices, its help
+ * and the dispatch all come from that table. */
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,124 +13,97 @@
 
 static const char *const TOOL = "scene_export";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: scene_export SCENE.json --to pov|blender|json -o OUT [options]\n"
-"\n"
-"Exports a scene (docs/scene-format.md) so that other renderers draw the same\n"
-"image in linear radiance (docs/scene_export.md).\n"
-"\n"
-"  --to pov       OUT = DIR/NAME.pov: writes NAME.pov, NAME.ini and the light\n"
-"                 maps NAME_map<i>.exr; `povray NAME.ini` in DIR renders\n"
-"                 DIR/NAME.exr\n"
-"  --to blender   OUT = DIR/NAME.py: writes NAME.py (a fixed script) and its\n"
-"                 data NAME.json (and light maps NAME_map<i>.exr); render with\n"
-"                 blender -b -P DIR/NAME.py -- --engine cycles|eevee --out IMG.exr\n"
-"                     [--samples N] [--seed S]\n"
-"                 (EEVEE needs a display: run it under xvfb-run)\n"
-"  --to json      OUT = FILE.json: the normalised scene (defaults filled in,\n"
-"                 transforms as matrices, files as absolute paths)\n"
-"\n"
-"options:\n"
-"  -o, --output OUT         the output file, as above\n"
-"  --quality draft|final   draft (default): quick settings for previews and\n"
-"                           tests; final: medium intervals and samples for a\n"
-"                           converged comparison\n"
-"  --strict                 refuse (exit 2, nothing written) if the target\n"
-"                           cannot represent the scene exactly\n"
-"  -h, --help               show this help\n"
-"\n"
-"Approximations are printed as warnings on stderr and written into the\n"
-"output. Exit status: 0 on success, 2 for bad input (arguments, scene, a\n"
-"refused --strict export), 1 for other failures. Files are written whole\n"
-"or not at all.\n");
+typedef struct args {
+  const char *output;
+  int to, quality, strict, parents;
+} args;
+
+enum { MAX_TARGETS = 16 };
+
+static const sh_cli_choice qualities[] = {
+    {"draft", SE_QUALITY_DRAFT}, {"final", SE_QUALITY_FINAL}, {NULL, 0}};
+
+#define FIELD(f) offsetof(args, f)
+static sh_cli_option options[] = {
+    {"to", 0, SH_CLI_CHOICE, NULL, 0, FIELD(to), 0, 0, 0, 0, NULL, NULL, NULL,
+     NULL, "the target (below)"},
+    {"output", 'o', SH_CLI_TEXT, "OUT", 0, FIELD(output), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL, "the output file, named as its target says below"},
+    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL, "make the output's directory (and its parents) if missing"},
+    {"quality", 0, SH_CLI_CHOICE, NULL, 0, FIELD(quality), 0, 0, 0, 0,
+     qualities, NULL, NULL, "draft",
+     "draft: quick settings for previews and tests; final: medium intervals "
+     "and samples for a converged comparison"},
+    {"strict", 0, SH_CLI_FLAG, NULL, 0, FIELD(strict), 0, 0, 0, 1, NULL, NULL,
+     NULL, NULL,
+     "refuse (exit 2, nothing written) if the target cannot represent the "
+     "scene exactly"},
+};
+
+/* --to's choices and the targets' help, from the targets' table. */
+static sh_cli_choice targets[MAX_TARGETS + 1];
+
+static void describe_targets(void) {
+  int k = 0;
+  for (const se_target *t = se_targets; t->name && k < MAX_TARGETS; t++, k++)
+    targets[k] = (sh_cli_choice){t->name, k};
+  targets[k] = (sh_cli_choice){NULL, 0};
+  options[0].choices = targets;
 }
 
-enum { TO_NONE = -1 };
+static void help_targets(FILE *f) {
+  fprintf(f, "targets:\n");
+  for (const se_target *t = se_targets; t->name; t++) {
+    char label[64];
+    snprintf(label, sizeof label, "--to %s", t->name);
+    sh_cli_help_item(f, label, t->help);
+  }
+  fprintf(f, "\nApproximations are printed as warnings on stderr and written "
+             "into the output.\nFiles are written whole or not at all; a "
+             "refused --strict export exits 2.\n");
+}
 
 int main(int argc, char **argv) {
-  const char *scene_path = NULL, *out_path = NULL;
-  int to = TO_NONE, strict = 0; /* an se_target */
-  se_options opt = {SE_QUALITY_DRAFT};
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(a, "--to")) {
-      if (!v) goto missing;
-      i++;
-      if (!strcmp(v, "pov")) to = SE_TARGET_POV;
-      else if (!strcmp(v, "blender")) to = SE_TARGET_BLENDER;
-      else if (!strcmp(v, "json")) to = SE_TARGET_JSON;
-      else {
-        fprintf(stderr, "%s: --to expects pov, blender or json, got '%s'\n", TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-      if (!v) goto missing;
-      if (out_path) {
-        fprintf(stderr, "%s: only one output (-o) is allowed\n", TOOL);
-        return 2;
-      }
-      out_path = v;
-      i++;
-    } else if (!strcmp(a, "--quality")) {
-      if (!v) goto missing;
-      i++;
-      if (!strcmp(v, "draft")) opt.quality = SE_QUALITY_DRAFT;
-      else if (!strcmp(v, "final")) opt.quality = SE_QUALITY_FINAL;
-      else {
-        fprintf(stderr, "%s: --quality expects draft or final, got '%s'\n", TOOL, v);
-        return 2;
-      }
-    } else if (!strcmp(a, "--strict")) {
-      strict = 1;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      fprintf(stderr, "%s: unknown option '%s' (see --help)\n", TOOL, a);
-      return 2;
-    } else if (!scene_path) {
-      scene_path = a;
-    } else {
-      fprintf(stderr, "%s: one scene file only; '%s' is extra\n", TOOL, a);
-      return 2;
-    }
-    continue;
-  missing:
-    fprintf(stderr, "%s: %s expects a value\n", TOOL, a);
-    return 2;
+  describe_targets();
+  const sh_cli_tool tool = {
+      TOOL, "SCENE.json --to TARGET -o OUT [options]",
+      "Exports a scene (docs/scene-format.md) so that other renderers draw "
+      "the same\nimage in linear radiance (docs/scene_export.md).",
+      options, (int)(sizeof options / sizeof *options), 1, 1, help_targets, NULL,
+      NULL, NULL, NULL};
+  args a = {NULL, -1, SE_QUALITY_DRAFT, 0, 0};
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
+  if (a.to < 0 || !a.output) {
+    fprintf(stderr, "%s: %s is required (see --help)\n", TOOL,
+            a.to < 0 ? "--to" : "-o OUT");
+    return SH_EXIT_BAD_INPUT;
   }
-  if (!scene_path || to == TO_NONE || !out_path) {
-    fprintf(stderr, "%s: %s is required\n%s", TOOL,
-            !scene_path ? "a scene file" : to == TO_NONE ? "--to" : "-o OUT",
-            "usage: scene_export SCENE.json --to pov|blender|json -o OUT "
-            "[--quality draft|final] [--strict] [--help]\n");
-    return 2;
-  }
+  const se_target *target = &se_targets[a.to];
+  if (!sh_cli_check_output(TOOL, "-o", a.output, target->extension, a.parents))
+    return SH_EXIT_BAD_INPUT;
 
-  sh_error err;
   sh_scene *scene = NULL;
-  if (sh_scene_load(scene_path, &scene, &err) != SH_OK)
-    return sh_cli_report(TOOL, &err);
-  if (scene->nlights == 0)
-    fprintf(stderr, "%s: warning: the scene has no light; its image is black but "
-                    "for emission, ambient and background\n", TOOL);
+  if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], 0, &scene))) return rc;
+  sh_error err;
+  se_options opt = {(se_quality)a.quality};
   se_notes notes = {0};
-  sh_status st = se_export_scene(scene, (se_target)to, &opt, out_path, strict, &notes, &err);
-  int code = 0;
+  sh_status st =
+      se_export_scene(scene, target, &opt, a.output, a.strict, &notes, &err);
   if (st == SH_OK) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);
-  } else if (strict && notes.count > 0 && st == SH_ERR_SCENE) {
+  } else if (a.strict && notes.count > 0 && st == SH_ERR_SCENE) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: error: --strict: %s\n", TOOL, notes.text[i]);
     fprintf(stderr, "%s: error: --strict: %s\n", TOOL, err.message);
-    code = 2;
+    rc = SH_EXIT_BAD_INPUT;
   } else {
-    code = sh_cli_report(TOOL, &err);
+    rc = sh_cli_report(TOOL, &err);
   }
   se_notes_free(&notes);
   sh_scene_free(scene);
-  return code;
+  return rc;
 }

@@ -158,7 +158,7 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
 
   /* The light map (or profile): an image file and a card. */
   char file[600], path[1200];
-  snprintf(file, sizeof file, "%s_map%d.exr", b->name, i);
+  snprintf(file, sizeof file, "%s_blender_map%d.exr", b->name, i);
   snprintf(path, sizeof path, "%.*s%s", b->dir_len, b->dir, file);
   int ok = profile ? se_output_owned_image(b->out, path, profile)
                    : se_output_image(b->out, path, &l->map);
@@ -418,7 +418,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   /* Files: the light maps (added by light()), the data, then the script
    * that reads them. */
   if (st == SH_OK) {
-    char *json_path = se_replace_extension(py_path, ".json");
+    char *json_path = se_replace_extension(py_path, ".blender.json");
     se_buf *jb = json_path ? se_output_text(out, json_path) : NULL;
     se_buf *pb = jb ? se_output_text(out, py_path) : NULL;
     free(json_path);

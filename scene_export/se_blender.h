@@ -4,8 +4,9 @@
  * fixed script (the same bytes for every scene,
  * blender_addon/shafts_blender/convert/blender_build.py, which the add-on's
  * import runs on the same JSON: one converter, se_run.h),
- * DIR/NAME.json, the scene converted to Blender's terms, and
- * DIR/NAME_map<i>.exr for each light map. The script reads the JSON file
+ * DIR/NAME.blender.json, the scene converted to Blender's terms, and
+ * DIR/NAME_blender_map<i>.exr for each light map (names no other target
+ * writes). The script reads the JSON file
  * next to it with json.load: no scene string is ever part of Python code,
  * and the script never opens a file the JSON names other than the light
  * maps, which it loads as images.

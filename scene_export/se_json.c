@@ -156,8 +156,11 @@ static json_t *render(const sh_render_settings *r) {
   return o;
 }
 
-sh_status se_json_build(const sh_scene *s, const char *json_path, se_output *out,
+sh_status se_json_build(const sh_scene *s, const se_options *opt,
+                        const char *json_path, se_output *out, se_notes *notes,
                         sh_error *err) {
+  (void)opt;
+  (void)notes;
   json_t *root = json_pack("{s:s, s:i, s:o, s:o, s:o}", "format", "shafts-scene",
                            "version", 1, "camera", camera(&s->camera),
                            "background", vec(s->background), "ambient",

@@ -1,21 +1,23 @@
 #include "se_run.h"
 
+#include <stdio.h>
 #include <string.h>
 
-#include "se_blender.h"
-#include "se_json.h"
-#include "se_pov.h"
 #include "sh_parse.h"
 
-sh_status se_export_scene(const sh_scene *scene, se_target target, const se_options *opt,
-                          const char *out_path, int strict, se_notes *notes,
-                          sh_error *err) {
+const se_target *se_target_find(const char *name) {
+  for (const se_target *t = se_targets; name && t->name; t++)
+    if (!strcmp(t->name, name)) return t;
+  return NULL;
+}
+
+sh_status se_export_scene(const sh_scene *scene, const se_target *target,
+                          const se_options *opt, const char *out_path,
+                          int strict, se_notes *notes, sh_error *err) {
+  if (!scene || !target || !opt || !out_path || !notes)
+    return sh_error_set(err, SH_ERR_ARG, "se_export_scene: a NULL argument");
   se_output out = {0};
-  sh_status st;
-  if (target == SE_TARGET_POV) st = se_pov_build(scene, opt, out_path, &out, notes, err);
-  else if (target == SE_TARGET_BLENDER)
-    st = se_blender_build(scene, opt, out_path, &out, notes, err);
-  else st = se_json_build(scene, out_path, &out, err);
+  sh_status st = target->build(scene, opt, out_path, &out, notes, err);
   if (st == SH_OK && notes->failed) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   if (st == SH_OK && strict && notes->count > 0)
     st = sh_error_set(err, SH_ERR_SCENE,
@@ -31,13 +33,16 @@ sh_status se_export_file(const char *scene_path, const char *target, int quality
                          const char *out_path, sh_error *err) {
   if (!scene_path || !target || !out_path)
     return sh_error_set(err, SH_ERR_ARG, "se_export_file: a NULL argument");
-  se_target t;
-  if (!strcmp(target, "pov")) t = SE_TARGET_POV;
-  else if (!strcmp(target, "blender")) t = SE_TARGET_BLENDER;
-  else if (!strcmp(target, "json")) t = SE_TARGET_JSON;
-  else
-    return sh_error_set(err, SH_ERR_ARG, "unknown export target '%s' (pov, blender or json)",
-                        target);
+  const se_target *t = se_target_find(target);
+  if (!t) {
+    char list[200] = "";
+    size_t n = 0;
+    for (const se_target *r = se_targets; r->name && n < sizeof list; r++)
+      n += (size_t)snprintf(list + n, sizeof list - n, "%s%s",
+                            r == se_targets ? "" : ", ", r->name);
+    return sh_error_set(err, SH_ERR_ARG, "unknown export target '%s' (%s)",
+                        target, list);
+  }
   se_options opt = {quality ? SE_QUALITY_FINAL : SE_QUALITY_DRAFT};
   sh_scene *scene = NULL;
   sh_status st = sh_scene_load(scene_path, &scene, err);

@@ -1,5 +1,12 @@
-/* Running an export: build a loaded scene's files for a target, refuse the
- * export if it must be exact and is not, write it whole or not at all.
+/* The exporters' table and running an export: build a loaded scene's files
+ * for a target, refuse the export if it must be exact and is not, write it
+ * whole or not at all.
+ *
+ * Every target is one row of se_targets (se_targets.c): its name (what
+ * `--to` takes), the extension of the file -o names, its build function
+ * and its line of help. scene_export's --help, its `--to` and the dispatch
+ * below all read that table, so a new exporter is one file with its build
+ * function and one row (docs/scene_export.md, "Adding a target").
  *
  * The command line (main.c) and the Blender add-on's import (through
  * libshafts.so and ctypes: blender_addon/shafts_blender/convert/importer.py)
@@ -15,22 +22,40 @@
 extern "C" {
 #endif
 
-typedef enum se_target { SE_TARGET_POV, SE_TARGET_BLENDER, SE_TARGET_JSON } se_target;
+/* A target's build: turns `scene` into files held in `out` (written by
+ * the caller), named after out_path, recording every approximation in
+ * `notes`; it writes nothing. A bad out_path is SH_ERR_ARG. */
+typedef sh_status (*se_build_fn)(const sh_scene *scene, const se_options *opt,
+                                 const char *out_path, se_output *out,
+                                 se_notes *notes, sh_error *err);
 
-/* Builds the export of `scene` for `target` at out_path (se_pov.h,
- * se_blender.h, se_json.h) and writes its files. If `strict` is set and the
- * export needs approximations, nothing is written and SH_ERR_SCENE is
- * returned, with a message counting them. The approximations are left in
- * `notes` (owned by the caller) either way. */
-sh_status se_export_scene(const sh_scene *scene, se_target target, const se_options *opt,
-                          const char *out_path, int strict, se_notes *notes,
-                          sh_error *err);
+typedef struct se_target {
+  const char *name;      /* "pov": what --to takes */
+  const char *extension; /* "pov": the extension of the file -o names */
+  se_build_fn build;
+  const char *help;      /* what is written and how to render it */
+} se_target;
+
+/* The targets, ended by a row of NULLs. */
+extern const se_target se_targets[];
+
+/* The target named `name`, or NULL. */
+const se_target *se_target_find(const char *name);
+
+/* Builds the export of `scene` for `target` at out_path and writes its
+ * files. If `strict` is set and the export needs approximations, nothing
+ * is written and SH_ERR_SCENE is returned, with a message counting them.
+ * The approximations are left in `notes` (owned by the caller) either
+ * way. */
+sh_status se_export_scene(const sh_scene *scene, const se_target *target,
+                          const se_options *opt, const char *out_path,
+                          int strict, se_notes *notes, sh_error *err);
 
 /* Loads the scene file at scene_path (sh_scene_load) and exports it without
  * --strict, discarding the notes (the Blender data file keeps them).
- * `target` is "pov", "blender" or "json"; `quality` 0 is draft, 1 final.
- * The entry point for callers that cannot build C structs (ctypes): the
- * error is read back with sh_error_format. */
+ * `target` is a target's name ("pov", "blender", "json"); `quality` 0 is
+ * draft, 1 final. The entry point for callers that cannot build C structs
+ * (ctypes): the error is read back with sh_error_format. */
 sh_status se_export_file(const char *scene_path, const char *target, int quality,
                          const char *out_path, sh_error *err);
 

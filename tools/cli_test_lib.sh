@@ -18,3 +18,42 @@ near() { # description, value, expected, tolerance
     echo "FAIL: $1: $2, expected $3 +- $4"; fail=1
   fi
 }
+version_ok() { # tool: --version prints "NAME X.Y.Z" and exits 0
+  local out
+  out=$("$1" --version); check "--version" 0 $?
+  echo "$out" | grep -Eq "^$(basename "$1") [0-9]+\.[0-9]+\.[0-9]+$" \
+    || { echo "FAIL: --version printed '$out'"; fail=1; }
+}
+message_has() { # description, file, text
+  grep -qF -- "$3" "$2" || { echo "FAIL: $1: no '$3' in: $(cat "$2")"; fail=1; }
+}
+# The behaviour both renderers share: --version, honest option errors, the
+# output directory checked (and made with -p) before rendering, --width and
+# --height, one "rendered in" line, provenance in the EXR header.
+render_cli_common() { # tool, good scene (4:3), extra arguments...
+  local tool=$1 scene=$2 name
+  shift 2
+  name=$(basename "$tool")
+  version_ok "$tool"
+  "$tool" "$scene" -o "$dir/x.exr" --bogus 2>"$dir/err"; check "unknown option last" 2 $?
+  message_has "unknown option last" "$dir/err" "unknown option '--bogus'"
+  "$tool" "$scene" -o "$dir/x.exr" --exposure 2>"$dir/err"; check "value missing last" 2 $?
+  message_has "value missing last" "$dir/err" "--exposure needs a value"
+  "$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 2 $?
+  "$tool" "$scene" -o "$dir/no/such/x.exr" -q 2>"$dir/err"; check "missing directory" 2 $?
+  message_has "missing directory" "$dir/err" "directory '$dir/no/such' does not exist"
+  [ -e "$dir/no" ] && { echo "FAIL: a missing directory was made without -p"; fail=1; }
+  "$tool" "$scene" -o "$dir/made/here/x.exr" -p "$@" 2>"$dir/err"; check "-p" 0 $?
+  [ -s "$dir/made/here/x.exr" ] || { echo "FAIL: -p did not write"; fail=1; }
+  [ "$(grep -c "rendered in" "$dir/err")" = 1 ] || { echo "FAIL: 'rendered in' not once: $(cat "$dir/err")"; fail=1; }
+  iinfo -v "$dir/made/here/x.exr" >"$dir/header"
+  for key in Software shafts:tool shafts:version shafts:mode shafts:settings shafts:scene; do
+    message_has "EXR provenance" "$dir/header" "$key:"
+  done
+  message_has "EXR provenance" "$dir/header" "\"$name $("$tool" --version | cut -d' ' -f2)\""
+  "$tool" "$scene" -o "$dir/w.exr" -q --width 8 "$@"; check "--width" 0 $?
+  iinfo "$dir/w.exr" | grep -Eq "8 x +6," || { echo "FAIL: --width 8: $(iinfo "$dir/w.exr")"; fail=1; }
+  "$tool" "$scene" -o "$dir/w.exr" -q --width 10 --height 20 "$@"; check "--width --height" 0 $?
+  iinfo "$dir/w.exr" | grep -Eq "10 x +20," || { echo "FAIL: --width 10 --height 20: $(iinfo "$dir/w.exr")"; fail=1; }
+  rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr"
+}

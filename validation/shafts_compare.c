@@ -5,6 +5,7 @@
  * of sh_image_compare (core/sh_compare.h), the measure every renderer of the
  * project is judged by. */
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -17,38 +18,46 @@
 
 static const char *const TOOL = "shafts_compare";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: shafts_compare REF.exr IMG.exr [options]\n"
-"\n"
-"Compares IMG with the reference REF (same size; any format OpenImageIO\n"
-"reads, taken as linear radiance for float formats) and prints the errors.\n"
-"\n"
-"options:\n"
-"  --lit F            lit region: pixels whose reference luminance exceeds F\n"
-"                     times the reference's largest (default 0.01)\n"
-"  --json             print one JSON object instead of text\n"
-"  --diff FILE        write the difference image: .exr holds |IMG - REF| per\n"
-"                     channel; .png a false-colour picture of the signed\n"
-"                     luminance difference (red: IMG brighter, blue: darker,\n"
-"                     green: NaN, infinite or negative values)\n"
-"  --diff-gain G      .png difference: a difference of 1/G of the reference's\n"
-"                     99th-percentile luminance is full intensity (default 10)\n"
-"  --preview FILE     write IMG as an sRGB preview (.png)\n"
-"  --exposure E       preview exposure in stops (default 0)\n"
-"  --max-rel-rms X    exit with status 3 if rel_rms exceeds X or IMG holds a\n"
-"                     bad value\n"
-"  -h, --help         show this help\n"
-"\n"
-"Exit status: 0 on success, 2 for bad input (arguments, unreadable images,\n"
-"different sizes), 3 if --max-rel-rms is exceeded, 1 otherwise.\n");
-}
-
 typedef struct args {
   const char *ref, *img, *diff, *preview;
   double lit, gain, exposure, max_rel_rms;
-  int json;
+  int json, parents;
 } args;
+
+#define FIELD(f) offsetof(args, f)
+static const sh_cli_option options[] = {
+    {"lit", 0, SH_CLI_NUMBER, "F", 1, FIELD(lit), 0, 1, 0, 0, NULL, NULL, NULL,
+     "0.01",
+     "lit region: pixels whose reference luminance exceeds F times the "
+     "reference's largest, F in [0, 1)"},
+    {"json", 0, SH_CLI_FLAG, NULL, 0, FIELD(json), 0, 0, 0, 1, NULL, NULL,
+     NULL, NULL, "print one JSON object instead of text"},
+    {"diff", 0, SH_CLI_TEXT, "FILE", 0, FIELD(diff), 0, 0, 0, 0, NULL, NULL,
+     NULL, NULL,
+     "write the difference image: .exr holds |IMG - REF| per channel; .png a "
+     "false-colour picture of the signed luminance difference (red: IMG "
+     "brighter, blue: darker, green: NaN, infinite or negative values)"},
+    {"diff-gain", 0, SH_CLI_NUMBER, "G", 1, FIELD(gain), 0, INFINITY, 1, 0,
+     NULL, NULL, NULL, "10",
+     ".png difference: a difference of 1/G of the reference's "
+     "99th-percentile luminance is full intensity"},
+    {"preview", 0, SH_CLI_TEXT, "FILE", 0, FIELD(preview), 0, 0, 0, 0, NULL,
+     NULL, NULL, NULL, "write IMG as an sRGB preview (.png)"},
+    {"exposure", 0, SH_CLI_NUMBER, "E", 1, FIELD(exposure), -INFINITY,
+     INFINITY, 0, 0, NULL, NULL, NULL, "0", "preview exposure in stops"},
+    {"max-rel-rms", 0, SH_CLI_NUMBER, "X", 1, FIELD(max_rel_rms), 0, INFINITY,
+     0, 0, NULL, NULL, NULL, NULL,
+     "exit with status 3 if rel_rms exceeds X or IMG holds a bad value"},
+    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL, "make the directories of --diff and --preview if missing"},
+};
+
+static const sh_cli_tool tool = {
+    "shafts_compare", "REF.exr IMG.exr [options]",
+    "Compares IMG with the reference REF (same size; any format OpenImageIO\n"
+    "reads, taken as linear radiance for float formats) and prints the errors.",
+    options, (int)(sizeof options / sizeof *options), 2, 2, NULL,
+    "3 if --max-rel-rms is exceeded.", NULL, NULL, NULL};
 
 /* Returns -1 to go on, else an exit status. */
 static int parse_args(int argc, char **argv, args *a) {
@@ -56,65 +65,21 @@ static int parse_args(int argc, char **argv, args *a) {
   a->lit = 0.01;
   a->gain = 10.0;
   a->max_rel_rms = -1.0;
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i];
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    int ok = 1;
-    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(o, "--json")) {
-      a->json = 1;
-      continue;
-    } else if (o[0] == '-' && o[1] != '\0' && !v) {
-      fprintf(stderr, "%s: %s needs a value\n", TOOL, o);
-      return 2;
-    } else if (!strcmp(o, "--lit")) {
-      ok = sh_cli_double(TOOL, o, v, &a->lit);
-      if (ok && !(a->lit >= 0 && a->lit < 1)) {
-        fprintf(stderr, "%s: --lit expects a number in [0, 1), got '%s'\n",
-                TOOL, v);
-        ok = 0;
-      }
-    } else if (!strcmp(o, "--diff")) {
-      a->diff = v;
-    } else if (!strcmp(o, "--diff-gain")) {
-      ok = sh_cli_double(TOOL, o, v, &a->gain);
-      if (ok && !(a->gain > 0)) {
-        fprintf(stderr, "%s: --diff-gain expects a number > 0, got '%s'\n",
-                TOOL, v);
-        ok = 0;
-      }
-    } else if (!strcmp(o, "--preview")) {
-      a->preview = v;
-    } else if (!strcmp(o, "--exposure")) {
-      ok = sh_cli_double(TOOL, o, v, &a->exposure);
-    } else if (!strcmp(o, "--max-rel-rms")) {
-      ok = sh_cli_double(TOOL, o, v, &a->max_rel_rms) && a->max_rel_rms >= 0;
-      if (!ok) fprintf(stderr, "%s: --max-rel-rms expects a number >= 0\n", TOOL);
-    } else {
-      const char **operands[] = {&a->ref, &a->img};
-      if (!sh_cli_operand(TOOL, o, operands, 2)) return 2;
-      continue;
-    }
-    if (!ok) return 2;
-    i++;
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, a, &parsed);
+  if (rc >= 0) return rc;
+  if (a->lit >= 1) {
+    fprintf(stderr, "%s: --lit expects a number in [0, 1), got %g\n", TOOL,
+            a->lit);
+    return SH_EXIT_BAD_INPUT;
   }
-  if (!a->ref || !a->img) {
-    fprintf(stderr, "%s: need REF and IMG (see --help)\n", TOOL);
-    return 2;
-  }
-  const char *outs[2] = {a->diff, a->preview};
-  for (int k = 0; k < 2; k++) {
-    if (!outs[k]) continue;
-    char ext[16];
-    sh_file_extension(outs[k], ext, sizeof ext);
-    if (strcmp(ext, "png") && (k == 1 || strcmp(ext, "exr"))) {
-      fprintf(stderr, "%s: '%s' must end in %s\n", TOOL, outs[k],
-              k == 0 ? ".exr or .png" : ".png");
-      return 2;
-    }
-  }
+  a->ref = parsed.operands[0];
+  a->img = parsed.operands[1];
+  if ((a->diff &&
+       !sh_cli_check_output(TOOL, "--diff", a->diff, "exr,png", a->parents)) ||
+      (a->preview &&
+       !sh_cli_check_output(TOOL, "--preview", a->preview, "png", a->parents)))
+    return SH_EXIT_BAD_INPUT;
   return -1;
 }
 
@@ -177,7 +142,7 @@ int main(int argc, char **argv) {
               "values\n",
               TOOL, a.img, 100.0 * r.e.rel_rms, 100.0 * a.max_rel_rms,
               r.e.bad_values);
-      rc = 3;
+      rc = SH_EXIT_CHECK;
     }
   }
   sh_image_free(&ref);

@@ -9,7 +9,7 @@
 # collection); run as a script it renders.
 #
 # This file is the same for every scene: the scene lives in the JSON file
-# next to it (same name, .json), which is read with json.load and only ever
+# next to it (same name, .blender.json), which is read with json.load and only ever
 # used as data. Render with
 #
 #   blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr
@@ -531,7 +531,7 @@ def build_into(scene, collection, data, base_dir, engine):
 def main():
     try:
         opts = parse_args(sys.argv)
-        data_path = os.path.splitext(os.path.abspath(__file__))[0] + ".json"
+        data_path = os.path.splitext(os.path.abspath(__file__))[0] + ".blender.json"
         try:
             with open(data_path, "r", encoding="utf-8") as f:
                 data = json.load(f)

@@ -30,7 +30,7 @@ class ImportFailed(Exception):
 
 
 def blender_data(scene_path, directory, lib_path=None):
-    """Runs the C writer on a scene file: writes scene.py, scene.json and
+    """Runs the C writer on a scene file: writes scene.py, scene.blender.json and
     the light maps into `directory` and returns the data (a dict)."""
     try:
         lib = shafts.load_library(lib_path)
@@ -46,7 +46,7 @@ def blender_data(scene_path, directory, lib_path=None):
                   os.fsencode(out), err.ptr)
         if code != 0:
             raise ImportFailed(str(err.exception(code)))
-    with open(os.path.join(directory, "scene.json"), "r", encoding="utf-8") as f:
+    with open(os.path.join(directory, "scene.blender.json"), "r", encoding="utf-8") as f:
         return json.load(f)
 
 

@@ -1,0 +1,22 @@
+/* The exporters: one row each (se_run.h). A new target is a file with its
+ * build function (se_build_fn) and a row here. */
+#include "se_blender.h"
+#include "se_json.h"
+#include "se_pov.h"
+#include "se_run.h"
+
+const se_target se_targets[] = {
+    {"pov", "pov", se_pov_build,
+     "OUT = DIR/NAME.pov: writes NAME.pov, NAME.ini and the light maps "
+     "NAME_map<i>.exr; `povray NAME.ini` in DIR renders DIR/NAME.exr"},
+    {"blender", "py", se_blender_build,
+     "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
+     "NAME.blender.json and light maps NAME.blender_map<i>.exr; render with "
+     "blender -b -P DIR/NAME.py -- --engine cycles|eevee --out IMG.exr "
+     "[--samples N] [--seed S] (EEVEE needs a display: run it under "
+     "xvfb-run)"},
+    {"json", "json", se_json_build,
+     "OUT = FILE.json: the normalised scene (defaults filled in, transforms "
+     "as matrices, files as absolute paths)"},
+    {NULL, NULL, NULL, NULL},
+};
