@@ -45,7 +45,7 @@ sys.path.insert(0, str(HERE))
 
 import renderers  # noqa: E402
 from metrics import CompareFailed, compare, mask_image  # noqa: E402
-from runs import RunCache, execute, run_key  # noqa: E402
+from runs import LocalExecutor, RunCache, plan_run  # noqa: E402
 from scenes import light_mask, prepare_data, project  # noqa: E402
 
 # ---------------------------------------------------------------------------
@@ -439,12 +439,60 @@ def reference_spp(mode):
     return 1024 if mode == "quick" else 4096
 
 
+def _case_scenes(case, mode, cache):
+    """A case's scene data, its prepared scene, and the prepared scene of
+    its ground truth (another case's for the scaled ones)."""
+    w, h = case_size(case, mode)
+    data = case.build(w, h)
+    prepared = prepare_data("hard-" + case.name, data, HERE, cache.root)
+    truth = prepared
+    if case.reference_case:
+        other = next(c for c in CASES if c.name == case.reference_case)
+        truth = prepare_data("hard-" + other.name, other.build(w, h), HERE, cache.root)
+    return data, prepared, truth
+
+
+def _case_settings(ctx, case, adapter, prepared):
+    """The (kind, label, params) an adapter renders a case with: [] if the
+    case is not for it, a string (the reason) if the image is too small."""
+    if case.only and adapter.name not in case.only:
+        return []
+    if min(prepared.width, prepared.height) < adapter.min_image_side:
+        return adapter.min_image_why
+    if adapter.name in case.extra:
+        return [("case", label, dict(adapter.hard_case_settings(ctx)[0][2], **p))
+                for label, p in case.extra[adapter.name]]
+    return adapter.hard_case_settings(ctx)
+
+
+def reference_params(mode):
+    return {"mode": "reference", "spp": reference_spp(mode), "seed": 0}
+
+
+def planned_runs(ctx, adapters, cache):
+    """Every run of the suite (runs.Run), for an executor that renders
+    them all ahead of the checks."""
+    out = []
+    for case in CASES:
+        _, prepared, truth = _case_scenes(case, ctx.mode, cache)
+        out.append(plan_run(ctx, renderers.REFERENCE, truth, reference_params(ctx.mode),
+                            "reference"))
+        for adapter in adapters:
+            settings = _case_settings(ctx, case, adapter, prepared)
+            if isinstance(settings, list):
+                out += [plan_run(ctx, adapter, prepared, params, label)
+                        for _, label, params in settings]
+    return out
+
+
 def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
-              image_dir=None):
+              image_dir=None, executor=None):
     """Renders and checks every case with every available adapter. Returns
     a dict: the cases (name, description, size, bounds) and per case and
     renderer the renderings with their checks. Images (previews and
-    difference PNGs) go to image_dir when it is given."""
+    difference PNGs) go to image_dir when it is given. Runs are rendered by
+    `executor` (default: here, runs.LocalExecutor)."""
+    executor = executor or LocalExecutor(ctx, cache, retry_failed)
     scratch = Path(scratch)
     ref_adapter = renderers.REFERENCE
     compare_tool = ctx.tool("validation/shafts_compare")
@@ -453,21 +501,16 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
                "bounds": bounds_table(ctx.mode, [a.name for a in adapters])}
     images = {}  # (case, renderer, label) -> EXR path, for invariances
     for case in CASES:
-        w, h = case_size(case, ctx.mode)
-        data = case.build(w, h)
-        prepared = prepare_data("hard-" + case.name, data, HERE, cache.root)
+        data, prepared, truth = _case_scenes(case, ctx.mode, cache)
         mask = light_mask(data) if case.mask_lights else []
         entry = {"name": case.name, "description": case.description,
                  "width": prepared.width, "height": prepared.height,
                  "masked_pixels": sum(r[2] * r[3] for r in mask), "renderings": []}
         results["cases"].append(entry)
-        ref_params = {"mode": "reference", "spp": reference_spp(ctx.mode), "seed": 0}
-        truth = prepared
         if case.reference_case:
-            other = next(c for c in CASES if c.name == case.reference_case)
-            truth = prepare_data("hard-" + other.name, other.build(w, h), HERE, cache.root)
-            entry["reference_case"] = other.name
-        ref = _run(ctx, cache, ref_adapter, truth, ref_params, "reference", say, retry_failed)
+            entry["reference_case"] = case.reference_case
+        ref = executor.run(plan_run(ctx, ref_adapter, truth, reference_params(ctx.mode),
+                                    "reference"), say=say)
         entry["reference"] = {"status": ref["status"], "error": ref.get("error"),
                               "seconds": ref.get("tool_seconds"),
                               "wall_seconds": ref.get("wall_seconds")}
@@ -481,19 +524,13 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
             compare(compare_tool, ref["image"], ref["image"], preview=d / "reference.png")
             entry["reference"]["png"] = str(d / "reference.png")
         for adapter in adapters:
-            if case.only and adapter.name not in case.only:
-                continue
-            if min(prepared.width, prepared.height) < adapter.min_image_side:
+            settings = _case_settings(ctx, case, adapter, prepared)
+            if isinstance(settings, str):
                 entry.setdefault("skipped", []).append(
-                    {"renderer": adapter.name, "why": adapter.min_image_why})
+                    {"renderer": adapter.name, "why": settings})
                 continue
-            if adapter.name in case.extra:
-                settings = [("case", label, dict(adapter.hard_case_settings(ctx)[0][2], **p))
-                            for label, p in case.extra[adapter.name]]
-            else:
-                settings = adapter.hard_case_settings(ctx)
             for kind, label, params in settings:
-                run = _run(ctx, cache, adapter, prepared, params, label, say, retry_failed)
+                run = executor.run(plan_run(ctx, adapter, prepared, params, label), say=say)
                 r = {"renderer": adapter.name, "label": label, "kind": kind,
                      "status": run["status"], "error": run.get("error"),
                      "seconds": run.get("tool_seconds"),
@@ -525,15 +562,6 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
                                  for c in results["cases"] for r in c["renderings"]
                                  for k in r["checks"] if k.get("known_failure")]
     return results
-
-
-def _run(ctx, cache, adapter, prepared, params, label, say, retry_failed):
-    key = run_key(prepared.key, adapter.name, adapter.version(ctx), params)
-    describe = {"renderer": adapter.name, "label": label, "params": params,
-                "scene": prepared.name}
-    return execute(cache, key, describe,
-                   lambda work, log: adapter.render(ctx, prepared.path, params, work, log),
-                   retry_failed=retry_failed, say=say)
 
 
 def _check(ctx, case, adapter, r, run, ref_img, mask, scratch, tool, image_dir):

@@ -16,6 +16,7 @@ one, since start-up (two seconds for Blender) says nothing about a method.
 """
 
 import json
+import math
 import os
 import re
 import shutil
@@ -103,9 +104,35 @@ class Adapter:
     min_image_side = 1
     min_image_why = ""
 
+    # The cost model of the Slurm executor's per-task limits (limits()):
+    # seconds to start, seconds per megapixel per unit of work(), and
+    # memory. Measured on this machine (2 threads of a shared CPU) and made
+    # generous: a task stopped by its limit is a Slurm failure, not a
+    # measurement.
+    startup_seconds = 2.0
+    seconds_per_megapixel = 10.0
+    memory_mb = 512
+    memory_mb_per_megapixel = 1024
+
     def missing(self, ctx):
         """None if the renderer can run, else a sentence saying why not."""
         raise NotImplementedError
+
+    def work(self, params):
+        """How much a setting costs relative to the renderer's unit (1 spp,
+        100 planes, ...): a setting of twice the work takes twice as long."""
+        return 1.0
+
+    def limits(self, ctx, scene, params):
+        """The time (seconds) and memory (MB) a Slurm task rendering
+        `scene` at `params` asks for: 20 times the cost model's estimate,
+        at least 5 minutes, at most the run's own timeout, plus a minute to
+        start; memory in steps of 64 MB."""
+        megapixels = scene.width * scene.height / 1e6
+        estimate = self.startup_seconds + megapixels * self.work(params) * self.seconds_per_megapixel
+        seconds = min(ctx.timeout, max(300.0, 20.0 * estimate)) + 60.0
+        mb = self.memory_mb + self.memory_mb_per_megapixel * megapixels
+        return int(math.ceil(seconds)), int(math.ceil(mb / 64.0)) * 64
 
     def version(self, ctx):
         raise NotImplementedError
@@ -138,6 +165,10 @@ class LmmTracer(Adapter):
              "(the RRTA baseline) and lmm (light meshes: soft shadows, so it "
              "differs from the hard-shadowed reference by design)")
     TOOL = "lmm_tracer/lmm_tracer"
+    # 0.5 s for 320x240 at 16 spp, reference mode (teapot_spot, 2 threads):
+    # 0.4 s per megapixel and spp; 150 MB resident.
+    seconds_per_megapixel = 2.0
+
     SWEEP = {
         "quick": {"spp": (1, 4, 16, 64), "extra": [("whitted, spp 4", {"mode": "whitted", "spp": 4}),
                                                ("lmm, spp 4", {"mode": "lmm", "spp": 4})]},
@@ -162,6 +193,9 @@ class LmmTracer(Adapter):
         for label, params in sweep["extra"]:
             out.append((label, dict(params, seed=1)))
         return out
+
+    def work(self, params):
+        return float(params.get("spp", 16))
 
     def hard_case_settings(self, ctx):
         spp = 64 if ctx.mode == "quick" else 256
@@ -188,6 +222,10 @@ class GlShafts(Adapter):
              "per fragment (--xi exact) or on the lattice (the paper's "
              "method) at several lattice sizes, and --jitter")
     TOOL = "gl_shafts/gl_shafts"
+    # 1.5 s for 320x240 at 100 planes, most of it starting llvmpipe and
+    # compiling shaders; 250 MB resident. Work: planes / 100.
+    startup_seconds = 5.0
+    memory_mb = 768
     # Every setting but "default" names its --xi, so that a change of
     # gl_shafts' defaults cannot change what a label means.
     SWEEP = {
@@ -220,6 +258,9 @@ class GlShafts(Adapter):
             # Without a medium there is no sweep: one render says it all.
             return sweep[:1]
         return list(sweep)
+
+    def work(self, params):
+        return params.get("planes", 100) / 100.0
 
     def hard_case_settings(self, ctx):
         return [("user", "default", {}),
@@ -266,6 +307,7 @@ class PovRay(Adapter):
              "`intervals` with `samples` per interval, both swept here (POV-Ray "
              "3.7 holds at most 255 intervals)")
     # (intervals, samples per interval); the last is the exporter's final.
+    # Work: intervals x samples / 100.
     SWEEP = {"quick": ((25, 1), (100, 1)),
              "full": ((10, 1), (25, 1), (50, 1), (100, 1), (200, 1), (255, 4))}
 
@@ -283,6 +325,9 @@ class PovRay(Adapter):
     def settings(self, ctx, scene):
         values = self.SWEEP[ctx.mode] if scene.has_medium else self.SWEEP[ctx.mode][-1:]
         return [self._setting(n, k) for n, k in values]
+
+    def work(self, params):
+        return params["intervals"] * params["samples"] / 100.0
 
     @staticmethod
     def _setting(intervals, samples):
@@ -326,6 +371,9 @@ def _blender_frame_seconds(text):
 class _Blender(Adapter):
     """Shared by Cycles and EEVEE: export, run Blender, read its time."""
 
+    # Blender starts in about two seconds and renders within 2 GB here.
+    startup_seconds = 10.0
+    memory_mb = 2048
     min_image_side = 4
     min_image_why = ("Blender renders at least 4 pixels a side: asked for 1x1 or 3x3, "
                      "Blender 3.4 writes a 4x4 image")
@@ -359,6 +407,9 @@ class Cycles(_Blender):
     about = ("Blender 3.4 Cycles through scene_export --to blender, single "
              "scattering, point-sampled pixels, at rising samples per pixel")
     SWEEP = {"quick": (4, 16), "full": (4, 16, 64, 256, 1024)}
+
+    def work(self, params):
+        return params["samples"] / 4.0
 
     def version(self, ctx):
         return "%s; scene_export %s" % (_system_version(ctx, "blender"),
@@ -414,6 +465,13 @@ class Eevee(_Blender):
         return [("tile %d, %d samples, TAA %d" % (t, s, a),
                  {"tile": t, "samples": s, "shadow_samples": ss, "taa": a})
                 for t, s, ss, a in sweep]
+
+    # xvfb-run and shader compilation on llvmpipe come on top of Blender.
+    startup_seconds = 60.0
+    memory_mb = 3072
+
+    def work(self, params):
+        return params["samples"] / 8.0 * params["taa"] * (8.0 / params["tile"]) ** 2
 
     def hard_case_settings(self, ctx):
         return [("user", "tile 8, 32 samples, TAA 1",

@@ -16,6 +16,7 @@ import os
 import shutil
 import subprocess
 import time
+from dataclasses import dataclass
 from pathlib import Path
 
 from scenes import write_atomic
@@ -153,3 +154,50 @@ def execute(cache, key, describe, render, retry_failed=False, say=None):
     result["log"] = str(d / "log.txt")
     result["cached"] = False
     return result
+
+
+@dataclass
+class Run:
+    """One rendering of a sweep, before it is rendered: its cache key, the
+    description stored with its result, and what renders it (an adapter of
+    renderers.py, the prepared scene, the settings)."""
+
+    key: str
+    version: str         # the renderer's version, part of the key
+    describe: dict
+    adapter: object
+    scene: object        # scenes.PreparedScene: path, width, height
+    params: dict
+
+
+def plan_run(ctx, adapter, scene, params, label):
+    """The Run of `adapter` on a prepared scene at one setting."""
+    version = adapter.version(ctx)
+    key = run_key(scene.key, adapter.name, version, params)
+    describe = {"renderer": adapter.name, "label": label, "params": params,
+                "scene": scene.name}
+    return Run(key, version, describe, adapter, scene, params)
+
+
+class LocalExecutor:
+    """Renders every run here, one at a time, when it is asked for (the
+    default). The Slurm executor (slurm.py) renders a sweep's runs as a job
+    array first and then answers from the cache; both give the same results."""
+
+    name = "local"
+
+    def __init__(self, ctx, cache, retry_failed=False):
+        self.ctx, self.cache, self.retry_failed = ctx, cache, retry_failed
+
+    def prefetch(self, planned, say):
+        """Nothing to do ahead: runs render when they are asked for."""
+        return True
+
+    def run(self, run, say=None):
+        return execute(self.cache, run.key, run.describe,
+                       lambda work, log: run.adapter.render(self.ctx, run.scene.path,
+                                                            run.params, work, log),
+                       retry_failed=self.retry_failed, say=say)
+
+    def info(self):
+        return {"name": self.name}

@@ -6,6 +6,7 @@ plot and the report pages. Run: python3 validation/test_validate.py."""
 
 import json
 import math
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -18,6 +19,7 @@ sys.path.insert(0, str(HERE))
 import hard_cases  # noqa: E402
 import renderers  # noqa: E402
 import report  # noqa: E402
+import slurm  # noqa: E402
 from metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach  # noqa: E402
 from runs import RunCache, RunFailed, execute, run_key  # noqa: E402
 from scenes import prepare_data, referenced_files, scaled_size  # noqa: E402
@@ -245,6 +247,39 @@ class ReportTest(unittest.TestCase):
             self.assertIn("| image_1x1 | gl_shafts | | not rendered | " + why,
                           report.summary_markdown(results))
 
+
+
+class SlurmPartsTest(unittest.TestCase):
+    """The Slurm executor's parts that need no cluster (slurm_test.py runs
+    the executor on one)."""
+
+    def test_array_indices(self):
+        self.assertEqual(slurm._indices("3"), [3])
+        self.assertEqual(slurm._indices("[4-6%2]"), [4, 5, 6])
+        self.assertEqual(slurm._indices("1,3-4"), [1, 3, 4])
+
+    def test_task_that_cannot_see_the_cache_fails_fast(self):
+        p = subprocess.run([sys.executable, str(HERE / "slurm_task.py"), "--probe",
+                            "/nonexistent/cache/slurm/sweep/array-0.json"],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        self.assertEqual(p.returncode, 3)
+        self.assertIn("--cache-dir", p.stderr)
+
+    def test_limits_follow_renderer_and_image_size(self):
+        class Scene:
+            width, height = 160, 120
+        big = type("Big", (), {"width": 4000, "height": 3000})
+        ctx = renderers.Context(HERE.parent, HERE.parent / "build", mode="quick")
+        lmm = renderers.ADAPTERS[0]
+        t, mb = lmm.limits(ctx, Scene, {"mode": "reference", "spp": 512})
+        # 20 x (2 s + 0.0192 megapixels x 512 spp x 2 s) + 60 s to start.
+        self.assertEqual((t, mb % 64), (494, 0))
+        t2, mb2 = lmm.limits(ctx, big, {"mode": "reference", "spp": 512})
+        self.assertEqual(t2, ctx.timeout + 60)
+        self.assertGreater(mb2, mb)
+        eevee = renderers.by_name("eevee")[0]
+        self.assertGreater(eevee.limits(ctx, Scene, {"tile": 8, "samples": 32,
+                                                    "shadow_samples": 16, "taa": 1})[1], mb)
 
 if __name__ == "__main__":
     unittest.main()

@@ -5,6 +5,7 @@ converged reference, in error and in time.
   validate.py [--quick | --full] --report DIR [--scenes DIR_OR_FILE ...]
               [--cache DIR] [--build-dir DIR] [--renderers a,b,...]
               [--scale F] [--ref-spp N] [--no-hard-cases] [--retry-failed]
+              [--executor local|slurm] [--partition P] [--account A] ...
 
 For each scene: the converged reference (lmm_tracer --mode reference at
 high spp), then each renderer's sweep (renderers.py: gl_shafts over planes,
@@ -14,12 +15,16 @@ timed and compared with the reference (shafts_compare). Then the hard-case
 stability suite (hard_cases.py). Writes DIR/index.html, DIR/summary.md and
 DIR/results.json; runs are cached (runs.py) so a re-run renders only what
 changed and an interrupted run resumes. A renderer that is missing or fails
-is skipped with a note in the report.
+is skipped with a note in the report. With --executor slurm every run the
+cache lacks is rendered first, as tasks of Slurm job arrays (slurm.py), and
+the comparisons then read them from the cache: the same results.
 
 Exit status: 0 when the report is written (renderer failures are in it;
 with --strict, 1 if a hard case failed), 1 if the reference itself failed
-for a scene or a hard case (the report then measures nothing there), 2 for
-bad arguments or a missing build.
+for a scene or a hard case (the report then measures nothing there) or a
+Slurm task failed for good (its run is reported failed and not cached: run
+again to resume), 2 for bad arguments, a missing build, or a Slurm that
+cannot render the sweep (no sbatch, nodes that do not see the cache).
 """
 
 import argparse
@@ -39,11 +44,12 @@ sys.path.insert(0, str(HERE))
 import hard_cases  # noqa: E402
 import renderers  # noqa: E402
 import report  # noqa: E402
+import slurm  # noqa: E402
 import subprocess  # noqa: E402
 
 from metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,  # noqa: E402
                      time_to_reach)
-from runs import RunCache, execute, run_key  # noqa: E402
+from runs import LocalExecutor, RunCache, plan_run  # noqa: E402
 from scenes import find_scenes, light_mask, prepare_file, write_atomic  # noqa: E402
 from svgplot import speed_error_svg  # noqa: E402
 
@@ -76,22 +82,17 @@ def machine():
 class Validation:
     """One validation run: its context, cache, report directory, tallies."""
 
-    def __init__(self, ctx, cache, report_dir, adapters, ref_spp, retry_failed, say):
+    def __init__(self, ctx, cache, report_dir, adapters, ref_spp, executor, say):
         self.ctx, self.cache, self.dir = ctx, cache, Path(report_dir)
         self.adapters, self.ref_spp = adapters, ref_spp
-        self.retry_failed, self.say = retry_failed, say
+        self.executor, self.say = executor, say
         self.compare_tool = ctx.tool("validation/shafts_compare")
         self.rendered = self.cached = 0
 
     def run(self, adapter, scene, params, label):
-        """One run, from the cache or rendered."""
-        key = run_key(scene.key, adapter.name, adapter.version(self.ctx), params)
-        describe = {"renderer": adapter.name, "label": label, "params": params,
-                    "scene": scene.name}
-        result = execute(self.cache, key, describe,
-                         lambda work, log: adapter.render(self.ctx, scene.path, params, work, log),
-                         retry_failed=self.retry_failed,
-                         say=lambda m: self.say("  %s: %s" % (scene.name, m)))
+        """One run, from the cache or rendered (by the executor)."""
+        result = self.executor.run(plan_run(self.ctx, adapter, scene, params, label),
+                                   say=lambda m: self.say("  %s: %s" % (scene.name, m)))
         if result.get("cached"):
             self.cached += 1
         else:
@@ -100,6 +101,25 @@ class Validation:
                 self.say("  %s: %s %s failed: %s" % (scene.name, adapter.name, label,
                                                       result.get("error")))
         return result
+
+    def reference_params(self):
+        return {"mode": "reference", "spp": self.ref_spp, "seed": 0}, \
+            "lmm_tracer reference, spp %d" % self.ref_spp
+
+    def planned(self, path, scale):
+        """Every run of one scene (the reference first), for an executor
+        that renders a sweep ahead of its comparisons; [] if the scene
+        cannot be read (scene() reports that)."""
+        try:
+            scene = prepare_file(path, self.cache.root, scale)
+        except (OSError, ValueError):
+            return []
+        params, label = self.reference_params()
+        out = [plan_run(self.ctx, renderers.REFERENCE, scene, params, label)]
+        for adapter in self.adapters:
+            out += [plan_run(self.ctx, adapter, scene, p, lab)
+                    for lab, p in adapter.settings(self.ctx, scene)]
+        return out
 
     def scene(self, path, scale):
         """Renders and compares one scene; returns its entry of the results."""
@@ -113,9 +133,8 @@ class Validation:
         sdir.mkdir(parents=True, exist_ok=True)
         entry = {"name": scene.name, "source": scene.source, "width": scene.width,
                  "height": scene.height, "has_medium": scene.has_medium, "runs": []}
-        ref_label = "lmm_tracer reference, spp %d" % self.ref_spp
-        ref = self.run(renderers.REFERENCE, scene,
-                       {"mode": "reference", "spp": self.ref_spp, "seed": 0}, ref_label)
+        ref_params, ref_label = self.reference_params()
+        ref = self.run(renderers.REFERENCE, scene, ref_params, ref_label)
         if ref["status"] != "ok":
             entry["error"] = "the reference failed: %s" % ref.get("error")
             return entry
@@ -232,7 +251,9 @@ def parse_args(argv):
     ap.add_argument("--report", required=True, help="the report directory")
     ap.add_argument("--scenes", nargs="+", metavar="DIR_OR_FILE",
                     help="scene files, or directories of them (default: scenes/)")
-    ap.add_argument("--cache", help="the run cache (default: BUILD/validation-cache)")
+    ap.add_argument("--cache", "--cache-dir", dest="cache",
+                    help="the run cache (default: BUILD/validation-cache); with "
+                         "--executor slurm a directory every node sees at the same path")
     ap.add_argument("--build-dir", help="the build tree (default: build/)")
     ap.add_argument("--renderers", default="",
                     help="comma-separated: %s (default: all)"
@@ -252,7 +273,31 @@ def parse_args(argv):
                     help="rewrite index.html and summary.md from DIR/results.json, "
                          "rendering nothing")
     ap.add_argument("-q", "--quiet", action="store_true", help="no progress messages")
+    s = ap.add_argument_group("executor", "where the renders run (docs/validation.md, "
+                              "'On a cluster')")
+    s.add_argument("--executor", choices=("local", "slurm"), default="local",
+                   help="local: here, one at a time (default); slurm: every render a "
+                        "task of a Slurm job array, then compared here")
+    s.add_argument("--partition", help="Slurm partition (default: the cluster's)")
+    s.add_argument("--account", help="Slurm account to charge")
+    s.add_argument("--slurm-parallel", type=int, default=32, metavar="N",
+                   help="at most N tasks of an array at once (default 32)")
+    s.add_argument("--slurm-retries", type=int, default=2, metavar="N",
+                   help="resubmit a task that failed on Slurm's side N times (default 2)")
+    s.add_argument("--slurm-cpus", type=int, default=1, metavar="N",
+                   help="CPUs per task (default 1)")
+    s.add_argument("--slurm-setup", metavar="FILE",
+                   help="shell lines every task runs first (module load, a container's "
+                        "environment)")
+    s.add_argument("--sbatch-arg", action="append", default=[], metavar="ARG",
+                   help="one more sbatch option (repeatable), e.g. --sbatch-arg=--qos=low")
     args = ap.parse_args(argv)
+    if args.executor == "local" and (args.partition or args.account or args.slurm_setup
+                                     or args.sbatch_arg):
+        ap.error("--partition, --account, --slurm-setup and --sbatch-arg need --executor slurm")
+    if args.slurm_parallel < 1 or args.slurm_retries < 0 or args.slurm_cpus < 1:
+        ap.error("--slurm-parallel and --slurm-cpus must be at least 1, "
+                 "--slurm-retries at least 0")
     args.mode = args.mode or "quick"
     return args
 
@@ -314,7 +359,28 @@ def main(argv=None):
     results = {"mode": args.mode, "date": time.strftime("%Y-%m-%d %H:%M:%S"),
                "machine": machine(), "reference_spp": ref_spp, "lit": LIT,
                "renderers": infos, "scenes": [], "hard_cases": None}
-    val = Validation(ctx, cache, report_dir, available, ref_spp, args.retry_failed, say)
+    if args.executor == "slurm":
+        executor = slurm.SlurmExecutor(
+            ctx, cache, args.retry_failed, partition=args.partition, account=args.account,
+            parallel=args.slurm_parallel, retries=args.slurm_retries, cpus=args.slurm_cpus,
+            setup=args.slurm_setup, sbatch_args=args.sbatch_arg)
+    else:
+        executor = LocalExecutor(ctx, cache, args.retry_failed)
+    val = Validation(ctx, cache, report_dir, available, ref_spp, executor, say)
+    scale = args.scale if args.scale is not None else mode["scale"]
+    hard = [a for a in hard_wanted if a.missing(ctx) is None]
+    if args.executor == "slurm":
+        # Every run of the sweep is planned and rendered first; the
+        # comparisons below then read them from the cache.
+        planned = [r for path in scene_files for r in val.planned(path, scale)]
+        if not args.no_hard_cases:
+            planned += hard_cases.planned_runs(ctx, hard, cache)
+        try:
+            executor.prefetch(planned, say)
+        except slurm.SlurmError as e:
+            print("validate: %s" % e, file=sys.stderr)
+            return 2
+    results["executor"] = executor.info()
 
     def save():
         results["elapsed_seconds"] = time.time() - started
@@ -324,18 +390,15 @@ def main(argv=None):
         report.write_html(results, report_dir)
         write_atomic(report_dir / "summary.md", report.summary_markdown(results))
 
-    scale = args.scale if args.scale is not None else mode["scale"]
     for path in scene_files:
         results["scenes"].append(val.scene(path, scale))
         save()
 
     if not args.no_hard_cases:
-        hard = [a for a in hard_wanted if a.missing(ctx) is None]
         say("hard cases (%s)" % ", ".join(a.name for a in hard))
         with tempfile.TemporaryDirectory(prefix="validate-hard.") as tmp:
             hc = hard_cases.run_suite(ctx, hard, cache, tmp, say=lambda m: say("  " + m),
-                                      retry_failed=args.retry_failed,
-                                      image_dir=report_dir / "hard")
+                                      image_dir=report_dir / "hard", executor=executor)
         results["hard_cases"] = hc
     save()
 
@@ -360,6 +423,10 @@ def main(argv=None):
         no_reference += [c["name"] for c in results["hard_cases"]["cases"] if c.get("error")]
     if no_reference:
         say("the reference failed for: %s" % ", ".join(no_reference))
+        return 1
+    if getattr(executor, "failed", None):
+        say("%d Slurm tasks failed (above); their runs are not cached: run again to "
+            "render only them" % len(executor.failed))
         return 1
     return 1 if (args.strict and failed) else 0
 
