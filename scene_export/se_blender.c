@@ -8,7 +8,7 @@
 
 #include "se_geom.h"
 #include "se_jsontext.h"
-#include "se_phase.h"
+#include "se_cycles_phase.h"
 #include "se_text.h"
 #include "sh_camera.h"
 #include "sh_tessellate.h"
@@ -315,7 +315,7 @@ static json_t *medium(blend *b) {
             se_phase_name(m->phase.type), g1,
             m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
   /* n lobes of density sigma_s / n^2 (Cycles sums their phases unweighted,
-   * se_phase.h) and the scattering they leave out, sigma_s (1 - 1/n), as
+   * se_cycles_phase.h) and the scattering they leave out, sigma_s (1 - 1/n), as
    * absorption. */
   json_t *scatter = json_array();
   for (int i = 0; ds > 0 && i < n; i++)

@@ -26,7 +26,7 @@
  *   format's smoothstep exactly, times cos(theta) (Cycles 3.4: our exponent
  *   1); suns with strength = irradiance and angle 0; all with radius 0.
  * - Medium: a box mesh with a volume-only material (Volume Scatter lobes
- *   and Volume Absorption), se_phase.h.
+ *   and Volume Absorption), se_cycles_phase.h.
  * - Shapes: triangle meshes in world coordinates; spheres and cylinders
  *   tessellated (sh_tessellate.h) and smooth-shaded.
  * - Materials: a sum of closures (Diffuse, Glossy for Phong and mirror,
@@ -46,9 +46,7 @@ extern "C" {
 
 /* Builds the Blender files for `scene` in `out`; `py_path` must end in
  * ".py", else SH_ERR_ARG. */
-sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
-                           const char *py_path, se_output *out, se_notes *notes,
-                           sh_error *err);
+se_build se_blender_build;
 
 /* The fixed script, as written next to every export. */
 extern const unsigned char se_blender_script[];

@@ -129,3 +129,14 @@ void se_output_free(se_output *out) {
   free(out->files);
   memset(out, 0, sizeof *out);
 }
+
+const char *se_phase_name(sh_phase_type type) {
+  switch (type) {
+  case SH_PHASE_ISOTROPIC: return "isotropic";
+  case SH_PHASE_HENYEY_GREENSTEIN: return "henyey_greenstein";
+  case SH_PHASE_NISHITA_HAZY: return "nishita_hazy";
+  case SH_PHASE_NISHITA_MURKY: return "nishita_murky";
+  case SH_PHASE_RAYLEIGH: return "rayleigh";
+  }
+  return "isotropic";
+}

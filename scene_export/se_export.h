@@ -72,6 +72,18 @@ int se_output_owned_image(se_output *out, const char *path, sh_image *image);
 sh_status se_output_write(const se_output *out, sh_error *err);
 void se_output_free(se_output *out);
 
+/* A target's build, the one signature every exporter has (se_run.h's
+ * table holds them): turns `scene` into files held in `out` (written by
+ * the caller, se_output_write), named after out_path, recording every
+ * approximation in `notes`; it writes nothing. A bad out_path is
+ * SH_ERR_ARG. A target declares its build as `se_build se_NAME_build;`. */
+typedef sh_status se_build(const sh_scene *scene, const se_options *opt,
+                           const char *out_path, se_output *out,
+                           se_notes *notes, sh_error *err);
+
+/* The name of a phase type as the scene format spells it. */
+const char *se_phase_name(sh_phase_type type);
+
 /* Appends the notes as comment lines: each line starts with `prefix` (such
  * as "// " or "# "), and the text is sanitised for a comment. */
 void se_notes_comment(const se_notes *notes, se_buf *b, const char *prefix);

@@ -18,9 +18,7 @@ extern "C" {
 
 /* Builds the normalised scene file in `out` (the exporters' build
  * signature, se_run.h; `opt` and `notes` are unused: the file is exact). */
-sh_status se_json_build(const sh_scene *scene, const se_options *opt,
-                        const char *json_path, se_output *out, se_notes *notes,
-                        sh_error *err);
+se_build se_json_build;
 
 #ifdef __cplusplus
 }

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "se_geom.h"
-#include "se_phase.h"
+#include "se_pov_terms.h"
 #include "se_text.h"
 #include "sh_tessellate.h"
 

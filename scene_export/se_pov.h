@@ -47,9 +47,7 @@ extern "C" {
 /* Builds the POV-Ray files for `scene` in `out`; `pov_path` must end in
  * ".pov" and its file name must be plain (se_is_plain_file_name), else
  * SH_ERR_ARG. Approximations are recorded in `notes` and as comments. */
-sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
-                       const char *pov_path, se_output *out, se_notes *notes,
-                       sh_error *err);
+se_build se_pov_build;
 
 #ifdef __cplusplus
 }

@@ -22,17 +22,11 @@
 extern "C" {
 #endif
 
-/* A target's build: turns `scene` into files held in `out` (written by
- * the caller), named after out_path, recording every approximation in
- * `notes`; it writes nothing. A bad out_path is SH_ERR_ARG. */
-typedef sh_status (*se_build_fn)(const sh_scene *scene, const se_options *opt,
-                                 const char *out_path, se_output *out,
-                                 se_notes *notes, sh_error *err);
 
 typedef struct se_target {
   const char *name;      /* "pov": what --to takes */
   const char *extension; /* "pov": the extension of the file -o names */
-  se_build_fn build;
+  se_build *build;
   const char *help;      /* what is written and how to render it */
 } se_target;
 

@@ -1,5 +1,5 @@
 /* The exporters: one row each (se_run.h). A new target is a file with its
- * build function (se_build_fn) and a row here. */
+ * build function (se_build, se_export.h) and a row here. */
 #include "se_blender.h"
 #include "se_json.h"
 #include "se_pov.h"

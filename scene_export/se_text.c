@@ -19,19 +19,6 @@ void se_comment_text(const char *in, char *out, size_t size) {
   if (len > n && size >= 4) memcpy(out + size - 4, "...", 4);
 }
 
-void se_pov_string(se_buf *b, const char *in) {
-  se_buf_puts(b, "\"");
-  for (const unsigned char *p = (const unsigned char *)in; *p; p++) {
-    if (*p == '\\') se_buf_puts(b, "\\\\");
-    else if (*p == '"') se_buf_puts(b, "\\\"");
-    else if (*p == '\n') se_buf_puts(b, "\\n");
-    else if (*p == '\t') se_buf_puts(b, "\\t");
-    else if (*p < 0x20 || *p >= 0x7f) se_buf_puts(b, "_");
-    else se_buf_append(b, (const char *)p, 1);
-  }
-  se_buf_puts(b, "\"");
-}
-
 void se_plain_name(const char *in, char *out, size_t size) {
   size_t n = 0;
   for (; in[n] && n + 1 < size; n++) {

@@ -21,12 +21,6 @@ extern "C" {
  * result is cut to size - 1 bytes with "..." marking a cut. */
 void se_comment_text(const char *in, char *out, size_t size);
 
-/* Appends `in` as a POV-Ray string literal, with its quotes: backslash and
- * double quote are escaped, tab and newline written as \t and \n, and any
- * other control or non-ASCII byte replaced by '_' (POV-Ray 3.7 reads
- * strings as ASCII). */
-void se_pov_string(se_buf *b, const char *in);
-
 /* True if `name` (a file name without directories) is non-empty, consists
  * of letters, digits and "._+-" only, and does not start with '-' or '.':
  * the names POV-Ray's .ini files and command line take without quoting. */

@@ -1,6 +1,7 @@
 /* Escaping user text: POV-Ray string literals, comments, side-file names. */
 #include <string.h>
 
+#include "se_pov_terms.h"
 #include "se_text.h"
 #include "sh_test.h"
 

@@ -1,40 +1,7 @@
-#include "se_phase.h"
+#include "se_cycles_phase.h"
 
 #include <math.h>
 #include <stddef.h>
-
-se_phase_pov se_phase_to_pov(const sh_phase *phase) {
-  se_phase_pov p = {1, 0.0, 1.0, "isotropic, POV-Ray type 1"};
-  switch (phase->type) {
-  case SH_PHASE_ISOTROPIC:
-    break;
-  case SH_PHASE_HENYEY_GREENSTEIN:
-    p.type = 5;
-    p.g = phase->g;
-    p.comment = "Henyey-Greenstein, POV-Ray type 5";
-    break;
-  case SH_PHASE_NISHITA_HAZY:
-    /* 0.576655375 (1 + 9 x^8), x = (1 + c)/2 uniform on [0, 1]: mean
-     * 0.576655375 (1 + 9/9). */
-    p.type = 2;
-    p.mean = 0.576655375 * 2.0;
-    p.comment = "Nishita hazy = Mie hazy, POV-Ray type 2";
-    break;
-  case SH_PHASE_NISHITA_MURKY:
-    /* 0.495714547 (1 + 50 x^32): mean 0.495714547 (1 + 50/33). */
-    p.type = 3;
-    p.mean = 0.495714547 * (1.0 + 50.0 / 33.0);
-    p.comment = "Nishita murky = Mie murky, POV-Ray type 3";
-    break;
-  case SH_PHASE_RAYLEIGH:
-    /* 0.799372013 (1 + c^2): mean 0.799372013 (1 + 1/3). */
-    p.type = 4;
-    p.mean = 0.799372013 * (4.0 / 3.0);
-    p.comment = "Rayleigh, POV-Ray type 4";
-    break;
-  }
-  return p;
-}
 
 double se_phase_to_hg(const sh_phase *phase, int *exact) {
   const double gmax = 1.0 - 1e-3;
@@ -81,15 +48,4 @@ int se_phase_to_hg_lobes(const sh_phase *phase, double g[SE_HG_MAX_LOBES], int *
   *exact = 0;
   for (int i = 0; i < n; i++) g[i] = src[i];
   return n;
-}
-
-const char *se_phase_name(sh_phase_type type) {
-  switch (type) {
-  case SH_PHASE_ISOTROPIC: return "isotropic";
-  case SH_PHASE_HENYEY_GREENSTEIN: return "henyey_greenstein";
-  case SH_PHASE_NISHITA_HAZY: return "nishita_hazy";
-  case SH_PHASE_NISHITA_MURKY: return "nishita_murky";
-  case SH_PHASE_RAYLEIGH: return "rayleigh";
-  }
-  return "isotropic";
 }

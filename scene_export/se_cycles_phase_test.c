@@ -3,7 +3,7 @@
  * within its fitted error at every angle. */
 #include <math.h>
 
-#include "se_phase.h"
+#include "se_cycles_phase.h"
 #include "sh_medium.h"
 #include "sh_test.h"
 

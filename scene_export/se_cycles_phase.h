@@ -1,10 +1,5 @@
-/* Phase functions in the targets' terms.
- *
- * POV-Ray 3.7 has all five of the format's phase functions: its phase k
- * is 4 pi times a normalised phase for types 1 (isotropic) and 5
- * (Henyey-Greenstein), and for types 2, 3, 4 (Mie hazy, Mie murky,
- * Rayleigh) a shape whose mean over the sphere is not 1. Knowing the mean
- * makes the mapping exact (se_pov.h).
+/* The Blender target's phase functions: the scene's phases as Cycles'
+ * Henyey-Greenstein lobes.
  *
  * Cycles has Henyey-Greenstein lobes only (Volume Scatter's anisotropy,
  * clamped to |g| <= 1 - 1e-3). Cycles 3.4 sums the phase functions of
@@ -19,23 +14,14 @@
  * - rayleigh: symmetric, g = 0 as one lobe; two lobes g = +-0.318085.
  * These are approximations (the notes say so); isotropic and
  * Henyey-Greenstein are exact. */
-#ifndef SE_PHASE_H
-#define SE_PHASE_H
+#ifndef SE_CYCLES_PHASE_H
+#define SE_CYCLES_PHASE_H
 
 #include "sh_scene.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct se_phase_pov {
-  int type;            /* POV-Ray's scattering type, 1 to 5 */
-  double g;            /* eccentricity, type 5 */
-  double mean;         /* mean of POV-Ray's k over the sphere */
-  const char *comment; /* e.g. "Henyey-Greenstein, POV-Ray type 5" */
-} se_phase_pov;
-
-se_phase_pov se_phase_to_pov(const sh_phase *phase);
 
 /* The Henyey-Greenstein g for Cycles; *exact is 1 if the lobe equals the
  * phase exactly. */
@@ -53,9 +39,6 @@ double se_phase_to_hg(const sh_phase *phase, int *exact);
  * (se_phase_to_hg). */
 #define SE_HG_MAX_LOBES 8
 int se_phase_to_hg_lobes(const sh_phase *phase, double g[SE_HG_MAX_LOBES], int *exact);
-
-/* The name of a phase type as the scene format spells it. */
-const char *se_phase_name(sh_phase_type type);
 
 #ifdef __cplusplus
 }

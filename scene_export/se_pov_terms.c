@@ -1,0 +1,48 @@
+#include "se_pov_terms.h"
+
+void se_pov_string(se_buf *b, const char *in) {
+  se_buf_puts(b, "\"");
+  for (const unsigned char *p = (const unsigned char *)in; *p; p++) {
+    if (*p == '\\') se_buf_puts(b, "\\\\");
+    else if (*p == '"') se_buf_puts(b, "\\\"");
+    else if (*p == '\n') se_buf_puts(b, "\\n");
+    else if (*p == '\t') se_buf_puts(b, "\\t");
+    else if (*p < 0x20 || *p >= 0x7f) se_buf_puts(b, "_");
+    else se_buf_append(b, (const char *)p, 1);
+  }
+  se_buf_puts(b, "\"");
+}
+
+se_phase_pov se_phase_to_pov(const sh_phase *phase) {
+  se_phase_pov p = {1, 0.0, 1.0, "isotropic, POV-Ray type 1"};
+  switch (phase->type) {
+  case SH_PHASE_ISOTROPIC:
+    break;
+  case SH_PHASE_HENYEY_GREENSTEIN:
+    p.type = 5;
+    p.g = phase->g;
+    p.comment = "Henyey-Greenstein, POV-Ray type 5";
+    break;
+  case SH_PHASE_NISHITA_HAZY:
+    /* 0.576655375 (1 + 9 x^8), x = (1 + c)/2 uniform on [0, 1]: mean
+     * 0.576655375 (1 + 9/9). */
+    p.type = 2;
+    p.mean = 0.576655375 * 2.0;
+    p.comment = "Nishita hazy = Mie hazy, POV-Ray type 2";
+    break;
+  case SH_PHASE_NISHITA_MURKY:
+    /* 0.495714547 (1 + 50 x^32): mean 0.495714547 (1 + 50/33). */
+    p.type = 3;
+    p.mean = 0.495714547 * (1.0 + 50.0 / 33.0);
+    p.comment = "Nishita murky = Mie murky, POV-Ray type 3";
+    break;
+  case SH_PHASE_RAYLEIGH:
+    /* 0.799372013 (1 + c^2): mean 0.799372013 (1 + 1/3). */
+    p.type = 4;
+    p.mean = 0.799372013 * (4.0 / 3.0);
+    p.comment = "Rayleigh, POV-Ray type 4";
+    break;
+  }
+  return p;
+}
+
