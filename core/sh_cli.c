@@ -433,6 +433,46 @@ int sh_cli_check_output(const char *tool, const char *option,
   return 1;
 }
 
+void sh_cli_render_init(sh_cli_render *r) {
+  memset(r, 0, sizeof *r);
+  r->exposure = NAN;
+}
+
+int sh_cli_render_check(const char *tool, const sh_cli_render *r) {
+  if (r->outputs.count == 0) {
+    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", tool);
+    return SH_EXIT_BAD_INPUT;
+  }
+  for (int k = 0; k < r->outputs.count; k++)
+    if (!sh_cli_check_output(tool, "-o", r->outputs.items[k], "exr,png",
+                             r->parents))
+      return SH_EXIT_BAD_INPUT;
+  if (r->stats && !sh_cli_check_output(tool, "--stats", r->stats, NULL, r->parents))
+    return SH_EXIT_BAD_INPUT;
+  return SH_EXIT_OK;
+}
+
+int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
+                        const char *path, sh_scene **scene) {
+  int rc = sh_cli_load_scene(tool, path, r->quiet, scene);
+  if (rc == SH_EXIT_OK) sh_cli_resize(*scene, r->width, r->height);
+  return rc;
+}
+
+double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene) {
+  return isnan(r->exposure) ? scene->render.exposure : r->exposure;
+}
+
+void sh_cli_render_done(const char *tool, const sh_cli_render *r, int width,
+                        int height, double seconds, const char *detail) {
+  if (r->quiet) return;
+  fprintf(stderr, "%s: wrote", tool);
+  for (int k = 0; k < r->outputs.count; k++)
+    fprintf(stderr, "%s %s", k ? "," : "", r->outputs.items[k]);
+  fprintf(stderr, " (%dx%d, rendered in %.3g s%s)\n", width, height, seconds,
+          detail ? detail : "");
+}
+
 int sh_cli_load_scene(const char *tool, const char *path, int quiet,
                       sh_scene **scene) {
   sh_error err;

@@ -13,6 +13,7 @@
 #ifndef SH_CLI_H
 #define SH_CLI_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 
@@ -146,6 +147,65 @@ int sh_cli_given(const sh_cli_tool *tool, const sh_cli_args *args,
 
 /* The name of the choice with `value`, or "?". */
 const char *sh_cli_choice_name(const sh_cli_choice *choices, int value);
+
+/* What the renderers' command lines share (gl_shafts, lmm_tracer): their
+ * outputs, --stats, --width/--height, --exposure, -q and -p. A tool puts
+ * an sh_cli_render in its values struct and SH_CLI_RENDER_OPTIONS(its
+ * struct, the member) into its option table. */
+typedef struct sh_cli_render {
+  sh_cli_list outputs;
+  const char *stats;
+  long width, height;
+  double exposure; /* NAN: the scene's render.exposure */
+  int quiet, parents;
+} sh_cli_render;
+
+#define SH_CLI__R(type, m, f) offsetof(type, m) + offsetof(sh_cli_render, f)
+#define SH_CLI_RENDER_OPTIONS(type, m)                                        \
+  {"output", 'o', SH_CLI_LIST, "FILE", 0, SH_CLI__R(type, m, outputs), 0, 0,  \
+   0, 0, NULL, NULL, NULL, NULL,                                              \
+   "output image: .exr (linear 32-bit float radiance, with the tool, "        \
+   "version, mode, settings and scene in its header) or .png (sRGB of "      \
+   "radiance * 2^exposure, clamped); repeat to write several formats from "  \
+   "one render"},                                                             \
+  {"parents", 'p', SH_CLI_FLAG, NULL, 0, SH_CLI__R(type, m, parents), 0, 0,   \
+   0, 1, NULL, NULL, NULL, NULL,                                              \
+   "make the outputs' directories (and their parents) if missing; without "  \
+   "it a missing directory is an error before rendering"},                    \
+  {"width", 0, SH_CLI_INT, "W", 1, SH_CLI__R(type, m, width), 1, 65536, 0, 0, \
+   NULL, NULL, NULL, NULL,                                                    \
+   "image width in pixels instead of the scene's (the height follows the "   \
+   "scene's aspect unless given)"},                                           \
+  {"height", 0, SH_CLI_INT, "H", 1, SH_CLI__R(type, m, height), 1, 65536, 0,  \
+   0, NULL, NULL, NULL, NULL, "image height in pixels instead of the scene's"}, \
+  {"exposure", 0, SH_CLI_NUMBER, "E", 1, SH_CLI__R(type, m, exposure),        \
+   -INFINITY, INFINITY, 0, 0, NULL, NULL, NULL, NULL,                         \
+   "PNG exposure in stops (default: render.exposure, else 0)"},               \
+  {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, SH_CLI__R(type, m, stats), 0, 0,  \
+   0, 0, NULL, NULL, NULL, NULL,                                              \
+   "write the settings used and the statistics of the render as JSON"},       \
+  {"quiet", 'q', SH_CLI_FLAG, NULL, 0, SH_CLI__R(type, m, quiet), 0, 0, 0, 1, \
+   NULL, NULL, NULL, NULL, "no progress bar, no messages but errors"}
+
+/* The defaults of an sh_cli_render (exposure NAN). */
+void sh_cli_render_init(sh_cli_render *r);
+
+/* After the parse: at least one output, each .exr or .png, and every
+ * output's and the --stats file's directory there (or made with -p).
+ * Prints the problem and returns 2, else 0. */
+int sh_cli_render_check(const char *tool, const sh_cli_render *r);
+
+/* Loads the scene (sh_cli_load_scene) and applies --width/--height.
+ * Returns 0 or the exit status. */
+int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
+                        const char *path, sh_scene **scene);
+
+/* The PNG exposure: --exposure, else the scene's. */
+double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene);
+
+/* Unless quiet: "TOOL: wrote A, B (WxH, rendered in T s<detail>)". */
+void sh_cli_render_done(const char *tool, const sh_cli_render *r, int width,
+                        int height, double seconds, const char *detail);
 
 /* Checks an output path before any work: its extension is one of `exts`
  * ("exr,png"; NULL: any) and its directory exists and is writable, or,

@@ -16,20 +16,10 @@ for opt in --planes --lattice --light-map-res --shadow-map-res --xi --jitter \
   grep -q -- "$opt" "$dir/help" || { echo "FAIL: --help does not mention $opt"; fail=1; }
 done
 
-cat >"$dir/good.json" <<'JSON'
-{"format": "shafts-scene", "version": 1,
- "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
-            "width": 32, "height": 24},
- "medium": {"sigma_s": [0.1, 0.1, 0.1],
-            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
- "lights": [{"type": "spot", "position": [0, 2.5, 0], "look_at": [0, 0, 0],
-             "intensity": [5, 5, 5], "outer_angle_deg": 30}],
- "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
- "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
-             "u": [6, 0, 0], "v": [0, 0, -6]},
-            {"type": "sphere", "material": "floor", "center": [0, 1, 0], "radius": 0.3}],
- "render": {"planes": 7, "lattice": [3, 4], "xi": "exact", "jitter": true}}
-JSON
+basic_scene "$dir/good.json" 32 24 \
+  '{"type": "spot", "position": [0, 2.5, 0], "look_at": [0, 0, 0], "intensity": [5, 5, 5], "outer_angle_deg": 30}' \
+  ', {"type": "sphere", "material": "floor", "center": [0, 1, 0], "radius": 0.3}' \
+  ', "render": {"planes": 7, "lattice": [3, 4], "xi": "exact", "jitter": true}'
 sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$dir/good.json" >"$dir/typo.json"
 printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
 

@@ -19,34 +19,14 @@ static const char *const TOOL = "gl_shafts";
 #define STR(x) STR_(x)
 
 typedef struct args {
-  sh_cli_list outputs;
-  const char *stats;
-  long width, height;
-  double exposure;
-  int quiet, parents;
+  sh_cli_render r;
 } args;
 
-#define FIELD(f) offsetof(args, f)
 #define RENDERER(name, key_, meta, text)                                      \
   {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key_, NULL, NULL, text}
 
 static sh_cli_option options[] = {
-    {"output", 'o', SH_CLI_LIST, "FILE", 0, FIELD(outputs), 0, 0, 0, 0, NULL,
-     NULL, NULL, NULL,
-     "output image: .exr (linear 32-bit float radiance, with the tool, "
-     "version, settings and scene in its header) or .png (sRGB of radiance "
-     "* 2^exposure, clamped); repeat to write several formats from one "
-     "render"},
-    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
-     NULL, NULL, NULL,
-     "make the outputs' directories (and their parents) if missing; "
-     "without it a missing directory is an error before rendering"},
-    {"width", 0, SH_CLI_INT, "W", 1, FIELD(width), 1, 65536, 0, 0, NULL, NULL,
-     NULL, NULL,
-     "image width in pixels instead of the scene's (the height follows the "
-     "scene's aspect unless given)"},
-    {"height", 0, SH_CLI_INT, "H", 1, FIELD(height), 1, 65536, 0, 0, NULL,
-     NULL, NULL, NULL, "image height in pixels instead of the scene's"},
+    SH_CLI_RENDER_OPTIONS(args, r),
     RENDERER("planes", "planes", "N",
              "virtual planes per light (default: render.planes, else "
              STR(GS_DEFAULT_PLANES_LOCAL) " for point and spot lights, "
@@ -83,16 +63,6 @@ static sh_cli_option options[] = {
              "where the GL context comes from (default auto: EGL's devices, "
              "a GPU first, then EGL surfaceless, then OSMesa; the environment "
              "variable SHAFTS_GL_BACKEND narrows auto)"),
-    {"exposure", 0, SH_CLI_NUMBER, "E", 1, FIELD(exposure), -INFINITY,
-     INFINITY, 0, 0, NULL, NULL, NULL, NULL,
-     "PNG exposure in stops (default: render.exposure, else 0)"},
-    {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, FIELD(stats), 0, 0, 0, 0, NULL,
-     NULL, NULL, NULL,
-     "write the settings used, the time (split by stage), the counts "
-     "(shader programs compiled among them), the backend and GL's renderer "
-     "and vendor strings as JSON"},
-    {"quiet", 'q', SH_CLI_FLAG, NULL, 0, FIELD(quiet), 0, 0, 0, 1, NULL, NULL,
-     NULL, NULL, "no messages but errors"},
 };
 
 static sh_status set_option(void *target, const char *key, const char *value,
@@ -158,27 +128,21 @@ static int finish(const args *a, const char *scene_path, const sh_scene *scene,
   put_settings(settings, scene, o, st);
   char *settings_text = sh_stats_text(settings);
   sh_stats_free(settings);
-  double exposure =
-      isnan(a->exposure) ? scene->render.exposure : a->exposure;
-  sh_status status =
-      sh_cli_write_images(TOOL, &a->outputs, img, exposure, "plane-sweep",
-                          settings_text, scene_path, &err);
-  if (status == SH_OK && a->stats) {
+  sh_status status = sh_cli_write_images(
+      TOOL, &a->r.outputs, img, sh_cli_render_exposure(&a->r, scene),
+      "plane-sweep", settings_text, scene_path, &err);
+  if (status == SH_OK && a->r.stats) {
     sh_stats *s = stats_record(scene_path, settings_text, st);
-    status = sh_stats_write(s, a->stats, &err);
+    status = sh_stats_write(s, a->r.stats, &err);
     sh_stats_free(s);
   }
   free(settings_text);
   if (status != SH_OK) return sh_cli_report(TOOL, &err);
-  if (!a->quiet) {
-    fprintf(stderr, "%s: wrote", TOOL);
-    for (int k = 0; k < a->outputs.count; k++)
-      fprintf(stderr, "%s %s", k ? "," : "", a->outputs.items[k]);
-    fprintf(stderr, " (%dx%d, rendered in %.3f s: %.3f s a frame + %.3f s "
-                    "setup)\n",
-            img->width, img->height, st->seconds + st->setup_seconds,
-            st->seconds, st->setup_seconds);
-  }
+  char detail[96];
+  snprintf(detail, sizeof detail, ": %.3f s a frame + %.3f s setup",
+           st->seconds, st->setup_seconds);
+  sh_cli_render_done(TOOL, &a->r, img->width, img->height,
+                     st->seconds + st->setup_seconds, detail);
   return SH_EXIT_OK;
 }
 
@@ -200,32 +164,22 @@ int main(int argc, char **argv) {
       "has the details.",
       options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
       set_option, &scratch, gs_option_choices};
-  args a = {.exposure = NAN};
+  args a;
+  sh_cli_render_init(&a.r);
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
-  if (a.outputs.count == 0) {
-    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", TOOL);
-    return SH_EXIT_BAD_INPUT;
-  }
-  for (int k = 0; k < a.outputs.count; k++)
-    if (!sh_cli_check_output(TOOL, "-o", a.outputs.items[k], "exr,png",
-                             a.parents))
-      return SH_EXIT_BAD_INPUT;
-  if (a.stats && !sh_cli_check_output(TOOL, "--stats", a.stats, NULL, a.parents))
-    return SH_EXIT_BAD_INPUT;
-
+  if ((rc = sh_cli_render_check(TOOL, &a.r))) return rc;
   const char *scene_path = parsed.operands[0];
   sh_scene *scene = NULL;
-  if ((rc = sh_cli_load_scene(TOOL, scene_path, a.quiet, &scene))) return rc;
-  sh_cli_resize(scene, a.width, a.height);
+  if ((rc = sh_cli_render_scene(TOOL, &a.r, scene_path, &scene))) return rc;
   sh_error err;
   gs_options opt = gs_options_defaults(scene);
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {
     sh_scene_free(scene);
     return sh_cli_report(TOOL, &err);
   }
-  if (!a.quiet)
+  if (!a.r.quiet)
     for (int i = 0; i < scene->nmaterials; i++) {
       const sh_material *m = &scene->materials[i];
       if (!sh_is_black(m->reflect) || !sh_is_black(m->transmit))

@@ -9,17 +9,7 @@ tool=$1
 "$tool" --help >"$dir/help" 2>&1; check "--help" 0 $?
 grep -q "usage: lmm_tracer" "$dir/help" || { echo "FAIL: --help text"; fail=1; }
 
-cat >"$dir/good.json" <<'JSON'
-{"format": "shafts-scene", "version": 1,
- "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
-            "width": 16, "height": 12},
- "medium": {"sigma_s": [0.1, 0.1, 0.1],
-            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
- "lights": [{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}],
- "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
- "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
-             "u": [6, 0, 0], "v": [0, 0, -6]}]}
-JSON
+basic_scene "$dir/good.json" 16 12 "$POINT_LIGHT"
 sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$dir/good.json" >"$dir/typo.json"
 printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
 

@@ -18,34 +18,14 @@
 static const char *const TOOL = "lmm_tracer";
 
 typedef struct args {
-  sh_cli_list outputs;
-  const char *stats;
-  long width, height;
-  double exposure;
-  int quiet, parents;
+  sh_cli_render r;
 } args;
 
-#define FIELD(f) offsetof(args, f)
 #define RENDERER(name, key, meta, text)                                       \
   {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key, NULL, NULL, text}
 
 static const sh_cli_option options[] = {
-    {"output", 'o', SH_CLI_LIST, "FILE", 0, FIELD(outputs), 0, 0, 0, 0, NULL,
-     NULL, NULL, NULL,
-     "output image: .exr (linear 32-bit float radiance, with the tool, "
-     "version, mode, settings and scene in its header) or .png (sRGB of "
-     "radiance * 2^exposure, clamped); repeat to write several formats from "
-     "one render"},
-    {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
-     NULL, NULL, NULL,
-     "make the outputs' directories (and their parents) if missing; "
-     "without it a missing directory is an error before rendering"},
-    {"width", 0, SH_CLI_INT, "W", 1, FIELD(width), 1, 65536, 0, 0, NULL, NULL,
-     NULL, NULL,
-     "image width in pixels instead of the scene's (the height follows the "
-     "scene's aspect unless given)"},
-    {"height", 0, SH_CLI_INT, "H", 1, FIELD(height), 1, 65536, 0, 0, NULL,
-     NULL, NULL, NULL, "image height in pixels instead of the scene's"},
+    SH_CLI_RENDER_OPTIONS(args, r),
     RENDERER("mode", "mode", NULL,
              "reference (default): the converged reference renderer; "
              "whitted: the same tracer as the RRTA baseline; lmm: the light "
@@ -82,15 +62,6 @@ static const sh_cli_option options[] = {
     RENDERER("seed", "seed", "S", "random seed (default: render.seed, else 0)"),
     RENDERER("threads", "threads", "N",
              "worker threads (default: one per CPU)"),
-    {"exposure", 0, SH_CLI_NUMBER, "E", 1, FIELD(exposure), -INFINITY,
-     INFINITY, 0, 0, NULL, NULL, NULL, NULL,
-     "PNG exposure in stops (default: render.exposure, else 0)"},
-    {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, FIELD(stats), 0, 0, 0, 0, NULL,
-     NULL, NULL, NULL,
-     "write the settings used, time, rays, samples, the reference's noise "
-     "estimate and the method's statistics as JSON"},
-    {"quiet", 'q', SH_CLI_FLAG, NULL, 0, FIELD(quiet), 0, 0, 0, 1, NULL, NULL,
-     NULL, NULL, "no progress bar, no messages but errors"},
 };
 
 static sh_status set_option(void *target, const char *key, const char *value,
@@ -130,11 +101,11 @@ static sh_status write_outputs(const args *a, const char *scene_path,
                                const sh_image *img, double exposure,
                                const lmm_render_stats *st, sh_error *err) {
   char *settings = settings_json(st);
-  sh_status status = sh_cli_write_images(TOOL, &a->outputs, img, exposure,
+  sh_status status = sh_cli_write_images(TOOL, &a->r.outputs, img, exposure,
                                          mode_name(st->mode), settings,
                                          scene_path, err);
   free(settings);
-  if (status != SH_OK || !a->stats) return status;
+  if (status != SH_OK || !a->r.stats) return status;
   size_t n = lmm_render_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -142,7 +113,7 @@ static sh_status write_outputs(const args *a, const char *scene_path,
   sh_stats *s = sh_stats_from_json(text);
   sh_stats_str(s, "tool", TOOL);
   sh_stats_str(s, "scene", scene_path);
-  status = sh_stats_write(s, a->stats, err);
+  status = sh_stats_write(s, a->r.stats, err);
   sh_stats_free(s);
   free(text);
   return status;
@@ -176,36 +147,26 @@ int main(int argc, char **argv) {
       "light meshes\nmethod (docs/lmm.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
       set_option, &scratch, lmm_render_option_choices};
-  args a = {.exposure = NAN};
+  args a;
+  sh_cli_render_init(&a.r);
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
   sh_error err;
-  if (a.outputs.count == 0) {
-    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", TOOL);
-    return SH_EXIT_BAD_INPUT;
-  }
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
     fprintf(stderr, "%s: %s\n", TOOL, err.message);
     return SH_EXIT_BAD_INPUT;
   }
-  for (int k = 0; k < a.outputs.count; k++)
-    if (!sh_cli_check_output(TOOL, "-o", a.outputs.items[k], "exr,png",
-                             a.parents))
-      return SH_EXIT_BAD_INPUT;
-  if (a.stats && !sh_cli_check_output(TOOL, "--stats", a.stats, NULL, a.parents))
-    return SH_EXIT_BAD_INPUT;
-
+  if ((rc = sh_cli_render_check(TOOL, &a.r))) return rc;
   const char *scene_path = parsed.operands[0];
   sh_scene *scene = NULL;
-  if ((rc = sh_cli_load_scene(TOOL, scene_path, a.quiet, &scene))) return rc;
-  sh_cli_resize(scene, a.width, a.height);
+  if ((rc = sh_cli_render_scene(TOOL, &a.r, scene_path, &scene))) return rc;
   sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
-  double exposure = isnan(a.exposure) ? scene->render.exposure : a.exposure;
+  double exposure = sh_cli_render_exposure(&a.r, scene);
 
   sh_progress bar;
   sh_progress_init(&bar, opt.mode == LMM_MODE_REFERENCE ? "reference" : "render",
-                   !a.quiet);
+                   !a.r.quiet);
   opt.progress = sh_progress_update;
   opt.progress_user = &bar;
   sh_image img = {0};
@@ -218,13 +179,9 @@ int main(int argc, char **argv) {
     status = write_outputs(&a, scene_path, &img, exposure, &st, &err);
   if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
-  } else if (!a.quiet) {
-    warn_noise(&st);
-    fprintf(stderr, "%s: wrote", TOOL);
-    for (int k = 0; k < a.outputs.count; k++)
-      fprintf(stderr, "%s %s", k ? "," : "", a.outputs.items[k]);
-    fprintf(stderr, " (%dx%d, rendered in %.2f s)\n", img.width, img.height,
-            st.seconds);
+  } else {
+    if (!a.r.quiet) warn_noise(&st);
+    sh_cli_render_done(TOOL, &a.r, img.width, img.height, st.seconds, NULL);
   }
   sh_image_free(&img);
   sh_scene_free(scene);

@@ -57,3 +57,19 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   iinfo "$dir/w.exr" | grep -Eq "10 x +20," || { echo "FAIL: --width 10 --height 20: $(iinfo "$dir/w.exr")"; fail=1; }
   rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr"
 }
+# Writes the tests' small scene: a quad floor in a medium box, seen from
+# (0, 1, 5). The light is on line 6 (messages name it).
+basic_scene() { # file, width, height, light (JSON), more shapes, more keys
+  cat >"$1" <<JSON
+{"format": "shafts-scene", "version": 1,
+ "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
+            "width": $2, "height": $3},
+ "medium": {"sigma_s": [0.1, 0.1, 0.1],
+            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
+ "lights": [$4],
+ "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
+ "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
+             "u": [6, 0, 0], "v": [0, 0, -6]}${5:-}]${6:-}}
+JSON
+}
+POINT_LIGHT='{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}'

@@ -6,17 +6,7 @@ set -u
 tool=$1 tracer=$2
 . "$(dirname "$0")/../tools/cli_test_lib.sh"
 
-cat >"$dir/s.json" <<'JSON'
-{"format": "shafts-scene", "version": 1,
- "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "fov_y_deg": 45,
-            "width": 24, "height": 16},
- "medium": {"sigma_s": [0.1, 0.1, 0.1],
-            "bounds": {"min": [-3, 0, -3], "max": [3, 3, 3]}},
- "lights": [{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}],
- "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}},
- "shapes": [{"type": "quad", "material": "floor", "corner": [-3, 0, 3],
-             "u": [6, 0, 0], "v": [0, 0, -6]}]}
-JSON
+basic_scene "$dir/s.json" 24 16 "$POINT_LIGHT"
 sed 's/"width": 24/"width": 12/' "$dir/s.json" >"$dir/small.json"
 "$tracer" "$dir/s.json" -o "$dir/ref.exr" --spp 8 -q || { echo "FAIL: render"; exit 1; }
 "$tracer" "$dir/small.json" -o "$dir/small.exr" --spp 8 -q || { echo "FAIL: render"; exit 1; }
