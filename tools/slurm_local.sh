@@ -11,7 +11,10 @@
 # Environment:
 #   SHAFTS_SLURM_DIR   state directory (default /tmp/shafts-slurm-UID): the
 #                      munge key and socket, slurm.conf, spool, state, logs
-#   SHAFTS_SLURM_PORT  slurmctld's port, slurmd's is the next (default 6817)
+#   SHAFTS_SLURM_PORT  slurmctld's port, slurmd's is the next (default 6817
+#                      for the default directory; for another, a port from
+#                      20000 to 29998 its path chooses, so that clusters of
+#                      several build trees can run side by side)
 # Both commands are idempotent: start on a running cluster and stop on a
 # stopped one do nothing. Clients (sbatch, squeue, sinfo) find the cluster
 # through SLURM_CONF: eval "$(tools/slurm_local.sh env)".
@@ -29,12 +32,22 @@ set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
 dir=${SHAFTS_SLURM_DIR:-/tmp/shafts-slurm-$(id -u)}
-port=${SHAFTS_SLURM_PORT:-6817}
+if [ -n "${SHAFTS_SLURM_PORT:-}" ]; then
+  port=$SHAFTS_SLURM_PORT
+elif [ -z "${SHAFTS_SLURM_DIR:-}" ]; then
+  port=6817
+else
+  port=$((20000 + 2 * ($(printf %s "$dir" | cksum | cut -d' ' -f1) % 5000)))
+fi
 conf=$dir/slurm.conf
 export SLURM_CONF=$conf
 
 say() { echo "slurm_local: $*" >&2; }
 die() { say "$*"; exit 1; }
+fail() { # a start that failed leaves nothing running
+  stop_daemons
+  die "$*"
+}
 
 alive() { # pid file: the process is running
   [ -s "$1" ] && kill -0 "$(cat "$1")" 2>/dev/null
@@ -57,7 +70,7 @@ start() {
   if ! command -v slurmctld >/dev/null || ! command -v slurmd >/dev/null ||
      ! command -v sbatch >/dev/null || ! command -v munged >/dev/null; then
     say "installing Slurm and munge (tools/bootstrap.sh --slurm)"
-    "$here/bootstrap.sh" --slurm || die "cannot install slurmctld, slurmd, slurm-client and munge"
+    "$here/bootstrap.sh" --slurm || fail "cannot install slurmctld, slurmd, slurm-client and munge"
   fi
   mkdir -p "$dir"
   if answers && alive "$dir/slurmd.pid" && alive "$dir/munged.pid"; then
@@ -72,18 +85,18 @@ start() {
   # munge: a key of our own and a socket in the state directory.
   if [ ! -s "$dir/munge/munge.key" ]; then
     mungekey --create --keyfile="$dir/munge/munge.key" --force >/dev/null ||
-      die "mungekey cannot create $dir/munge/munge.key"
+      fail "mungekey cannot create $dir/munge/munge.key"
   fi
   chmod 600 "$dir/munge/munge.key"
   munged --force --key-file="$dir/munge/munge.key" --socket="$dir/munge/munge.socket" \
     --pid-file="$dir/munged.pid" --log-file="$dir/log/munged.log" \
     --seed-file="$dir/munge/munged.seed" 9>&- ||
-    { show_log "$dir/log/munged.log"; die "munged did not start"; }
+    { show_log "$dir/log/munged.log"; fail "munged did not start"; }
   for _ in $(seq 50); do [ -S "$dir/munge/munge.socket" ] && break; sleep 0.1; done
-  [ -S "$dir/munge/munge.socket" ] || die "munged made no socket $dir/munge/munge.socket"
+  [ -S "$dir/munge/munge.socket" ] || fail "munged made no socket $dir/munge/munge.socket"
 
   # The node as slurmd sees it: CPUs, sockets, cores, threads, memory.
-  hw=$(slurmd -C | head -n1) || die "slurmd -C cannot read the node's hardware"
+  hw=$(slurmd -C | head -n1) || fail "slurmd -C cannot read the node's hardware"
   host=$(hostname -s)
   hw=$(echo "$hw" | sed "s/^NodeName=[^ ]*//")
   user=$(id -un)
@@ -132,9 +145,9 @@ EOF
   # The daemons must not inherit the lock (fd 9): it would be held for ever.
   # -c: a new cluster each time, no jobs carried over from the last one.
   slurmctld -c -f "$conf" 9>&- ||
-    { show_log "$dir/log/slurmctld.log"; die "slurmctld did not start"; }
+    { show_log "$dir/log/slurmctld.log"; fail "slurmctld did not start"; }
   slurmd -f "$conf" -N "$host" 9>&- ||
-    { show_log "$dir/log/slurmd.log"; die "slurmd did not start"; }
+    { show_log "$dir/log/slurmd.log"; fail "slurmd did not start"; }
   state=""
   for _ in $(seq 120); do
     state=$(node_state || true)
@@ -142,13 +155,13 @@ EOF
       idle) break ;;
       down*|drain*) scontrol update nodename="$host" state=resume >/dev/null 2>&1 || true ;;
     esac
-    alive "$dir/slurmctld.pid" || { show_log "$dir/log/slurmctld.log"; die "slurmctld died"; }
+    alive "$dir/slurmctld.pid" || { show_log "$dir/log/slurmctld.log"; fail "slurmctld died"; }
     sleep 0.5
   done
   if [ "$state" != idle ]; then
     show_log "$dir/log/slurmctld.log"
     show_log "$dir/log/slurmd.log"
-    die "node $host is '${state:-unknown}', not idle, after 60 s"
+    fail "node $host is '${state:-unknown}', not idle, after 60 s"
   fi
   say "up: node $host idle ($(echo "$hw" | grep -o 'CPUs=[0-9]*') $(echo "$hw" | grep -o 'RealMemory=[0-9]*') MB); export SLURM_CONF=$conf"
 }
@@ -200,6 +213,6 @@ case "${1:-}" in
   stop) exec 9>"/tmp/shafts-slurm-$(id -u).lock"; flock 9; stop ;;
   status) answers && [ "$(node_state)" != "" ] ;;
   env) echo "export SLURM_CONF=$conf" ;;
-  -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//' ;;
-  *) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2 ;;
+  -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//' ;;
+  *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2 ;;
 esac

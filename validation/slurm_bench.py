@@ -57,7 +57,7 @@ def main(argv=None):
         print("slurm_bench: build lmm_tracer first (%s)" % ctx.build, file=sys.stderr)
         return 2
     cluster = Path(args.build_dir).resolve() / "slurm-bench-cluster"
-    env = dict(os.environ, SHAFTS_SLURM_DIR=str(cluster), SHAFTS_SLURM_PORT="6847")
+    env = dict(os.environ, SHAFTS_SLURM_DIR=str(cluster))
     os.environ["SLURM_CONF"] = str(cluster / "slurm.conf")
     start = subprocess.run([str(ROOT / "tools" / "slurm_local.sh"), "start"], env=env)
     if start.returncode != 0:

@@ -34,7 +34,7 @@ import hard_cases  # noqa: E402
 ROOT = Path(os.environ.get("SHAFTS_SOURCE_DIR", HERE.parent))
 BUILD = Path(os.environ.get("SHAFTS_BINARY_DIR", ROOT / "build"))
 CLUSTER = BUILD / "slurm-test-cluster"
-ENV = dict(os.environ, SHAFTS_SLURM_DIR=str(CLUSTER), SHAFTS_SLURM_PORT="6837",
+ENV = dict(os.environ, SHAFTS_SLURM_DIR=str(CLUSTER),
            SLURM_CONF=str(CLUSTER / "slurm.conf"))
 failures = []
 
