@@ -226,10 +226,20 @@ class SlurmExecutor:
 
     def _wait(self, jobs, progress=None):
         """Until none of the jobs is in the queue."""
-        last = time.time()
+        last, errors = time.time(), 0
         while True:
             # Not `squeue -j`: it fails on a job Slurm has already purged.
-            out = _slurm(["squeue", "-h", "--me", "-o", "%F"])
+            try:
+                out = _slurm(["squeue", "-h", "--me", "-o", "%F"])
+                errors = 0
+            except SlurmError:
+                # A busy controller times out now and then: ten failures
+                # in a row (about a minute) end the sweep.
+                errors += 1
+                if errors >= 10:
+                    raise
+                time.sleep(5)
+                continue
             if not set(out.split()) & set(jobs):
                 return
             if progress and time.time() - last > 10:

@@ -5,10 +5,11 @@ Starts tools/slurm_local.sh (its own state directory and ports), renders a
 small sweep (two scenes: a spot in a medium and the same without the
 medium; lmm_tracer and gl_shafts at their quick settings; 32x24 images)
 with the local executor, then with the Slurm one while one task is
-cancelled before it starts and cancelled again when it is retried (the
-jobs are submitted held so that this is not a race), checks that the sweep
-reports that task with its Slurm state and log, then runs the sweep again
-and checks that it renders only that run, and that every image and every
+cancelled before it starts and again when it is retried (the jobs are
+submitted held so that this is not a race) and a running task is killed
+where the test catches one, checks that the sweep reports the killed tasks
+with their Slurm state and log, then runs the sweep again and checks that
+it renders only the missing runs, and that every image and every
 figure equals the local executor's (the renderers are deterministic: pixel
 values compared exactly with idiff). Stops Slurm in any case. Where Slurm
 cannot start, the test fails with slurm_local.sh's reason.
@@ -59,10 +60,11 @@ def validate(tmp, name, *extra):
 
 
 def queue():
-    """(array job id, job id as squeue prints it, name, reason) of every job."""
-    out = subprocess.run(["squeue", "-h", "-o", "%F|%i|%j|%r"], env=ENV, text=True,
+    """(array job id, job id as squeue prints it, name, state, reason) of
+    every job."""
+    out = subprocess.run(["squeue", "-h", "-o", "%F|%i|%j|%T|%r"], env=ENV, text=True,
                          stdout=subprocess.PIPE, stderr=subprocess.DEVNULL).stdout
-    return [tuple(line.split("|")) for line in out.splitlines() if line.count("|") == 3]
+    return [tuple(line.split("|")) for line in out.splitlines() if line.count("|") == 4]
 
 
 def scontrol(*args):
@@ -70,34 +72,49 @@ def scontrol(*args):
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
-def sweep_with_a_cancelled_task(tmp):
-    """The Slurm sweep, every job submitted held: the test releases them,
-    but first cancels the last task of the first lmm_tracer array, and
-    cancels the executor's retry of it. Returns (status, output, index)."""
+def scancel(job):
+    subprocess.run(["scancel", job], env=ENV, check=False)
+
+
+def sweep_with_killed_tasks(tmp):
+    """The Slurm sweep, every job submitted held so that the test can step
+    in: it cancels the last task of the lmm_tracer array before releasing
+    it (that task never starts), kills the first gl_shafts task it sees
+    running (a render stopped half-way, when the test is quick enough to
+    catch it: the run may end first), and cancels every retry the executor
+    submits. Returns (status, output, lmm_tracer's job ids, the index of
+    its cancelled task)."""
     cmd = validate(tmp, "slurm", "--executor", "slurm", "--cache-dir", str(tmp / "cache-slurm"),
                    "--slurm-parallel", "1", "--slurm-retries", "1", "--sbatch-arg=--hold")
-    proc = subprocess.Popen(cmd, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            text=True)
-    seen, lmm_jobs, victim = set(), [], None
-    while proc.poll() is None:
-        for array, jid, name, reason in queue():
-            if array in seen or "Held" not in reason:
-                continue
-            seen.add(array)
-            if name == "shafts-lmm_tracer":
-                lmm_jobs.append(array)
-                if len(lmm_jobs) == 1:
+    log = tmp / "slurm-sweep.log"
+    with open(log, "w") as out:
+        proc = subprocess.Popen(cmd, env=ENV, stdout=out, stderr=subprocess.STDOUT)
+        seen, names, lmm_jobs, victim, gl_job, killed = set(), set(), [], None, None, None
+        while proc.poll() is None:
+            for array, jid, name, state, reason in queue():
+                if array == gl_job and killed is None and state == "RUNNING":
+                    killed = jid
+                    scancel(jid)
+                if array in seen or "Held" not in reason:
+                    continue
+                seen.add(array)
+                if name in names and name != "shafts-probe":
+                    scancel(array)                      # a retry
+                elif name == "shafts-lmm_tracer":
                     victim = max(int(i) for i in re.findall(r"\d+", jid.split("_", 1)[1])[:2])
                     scontrol("release", array)
-                    # Cancelled after the release: the other tasks run.
-                    subprocess.run(["scancel", "%s_%d" % (array, victim)], env=ENV)
+                    scancel("%s_%d" % (array, victim))  # pending: never starts
                 else:
-                    subprocess.run(["scancel", array], env=ENV)
-            else:
-                scontrol("release", array)
-        time.sleep(0.1)
-    out = proc.stdout.read()
-    return proc.returncode, out, victim, lmm_jobs
+                    if name == "shafts-gl_shafts":
+                        gl_job = array
+                    scontrol("release", array)
+                names.add(name)
+                if name == "shafts-lmm_tracer":
+                    lmm_jobs.append(array)
+            time.sleep(0.05)
+    print("the test killed running task %s" % killed if killed else
+          "no gl_shafts task was seen running (each ended first)")
+    return proc.returncode, log.read_text(), lmm_jobs, victim
 
 
 def runs_by_label(results):
@@ -139,19 +156,19 @@ def run_checks(tmp):
         print(local.stdout)
         return
     t0 = time.time()
-    status, out, victim, lmm_jobs = sweep_with_a_cancelled_task(tmp)
+    status, out, lmm_jobs, victim = sweep_with_killed_tasks(tmp)
     print(out)
-    check(status == 1, "the Slurm sweep with a cancelled task exits with 1 (%d, %.0f s)"
+    check(status == 1, "the Slurm sweep with killed tasks exits with 1 (%d, %.0f s)"
           % (status, time.time() - t0))
-    check(len(lmm_jobs) == 2, "the cancelled task was retried once (lmm_tracer jobs %s)"
+    check(len(lmm_jobs) == 2, "the cancelled lmm_tracer task was retried once (jobs %s)"
           % lmm_jobs)
     check(re.search(r"Slurm task %s_%s ended CANCELLED .* on attempt 2; log "
                     % (lmm_jobs[-1] if lmm_jobs else "?", victim), out) is not None,
           "the sweep reports the cancelled task's state, attempt and log")
     slurm1 = json.loads((tmp / "slurm" / "results.json").read_text())
     failed = [r for r in runs_by_label(slurm1).values() if r["status"] != "ok"]
-    check(len(failed) == 1 and "CANCELLED" in (failed[0]["error"] or ""),
-          "the report shows one failed run with its Slurm state")
+    check(1 <= len(failed) <= 2 and all("CANCELLED" in (r["error"] or "") for r in failed),
+          "the report shows the killed runs failed with their Slurm state (%d)" % len(failed))
 
     t0 = time.time()
     again = subprocess.run(validate(tmp, "slurm", "--executor", "slurm", "--cache-dir",
@@ -161,9 +178,9 @@ def run_checks(tmp):
     check(again.returncode == 0, "the resumed Slurm sweep (%.0f s)" % (time.time() - t0))
     slurm2 = json.loads((tmp / "slurm" / "results.json").read_text())
     local_r = json.loads((tmp / "local" / "results.json").read_text())
-    check(slurm2["executor"]["tasks"] == 1 and slurm2["rendered"] == 1,
-          "the resumed sweep rendered only the missing run (%s tasks, %s rendered)"
-          % (slurm2["executor"]["tasks"], slurm2["rendered"]))
+    check(slurm2["executor"]["tasks"] == len(failed) and slurm2["rendered"] == len(failed),
+          "the resumed sweep rendered only the %d missing runs (%s tasks, %s rendered)"
+          % (len(failed), slurm2["executor"]["tasks"], slurm2["rendered"]))
 
     a, b = runs_by_label(local_r), runs_by_label(slurm2)
     check(sorted(a) == sorted(b) and len(a) == 13, "the same %d runs" % len(a))
