@@ -38,6 +38,20 @@ sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
   return SH_OK;
 }
 
+sh_status sh_file_readable(const char *path, long long *size, sh_error *err) {
+  struct stat st;
+  if (stat(path, &st) != 0 || access(path, R_OK) != 0) {
+    int e = errno;
+    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
+                        strerror(e));
+  }
+  if (S_ISDIR(st.st_mode))
+    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
+                        strerror(EISDIR));
+  if (size) *size = (long long)st.st_size;
+  return SH_OK;
+}
+
 void sh_file_extension(const char *path, char *buf, size_t size) {
   const char *dot = strrchr(path, '.');
   const char *slash = strrchr(path, '/');

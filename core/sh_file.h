@@ -16,6 +16,12 @@ extern "C" {
 sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
                                sh_error *err);
 
+/* Checks that `path` names a file this process can read and that is not a
+ * directory, before handing it to a library that reports a missing file
+ * like any other failure. SH_ERR_IO, "cannot open 'PATH': REASON",
+ * otherwise. Its size in bytes goes to *size when size is not NULL. */
+sh_status sh_file_readable(const char *path, long long *size, sh_error *err);
+
 /* The extension of `path` after its last dot, lower-cased into buf (empty
  * if there is none). */
 void sh_file_extension(const char *path, char *buf, size_t size);

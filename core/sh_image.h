@@ -1,4 +1,7 @@
-/* Images in linear RGB float, read and written through OpenImageIO.
+/* Images in linear RGB float, read and written as files: EXR through
+ * OpenEXR's C library, PNG through libpng, every other format OpenImageIO
+ * handles (JPEG, TIFF, HDR, tiled or multi-part EXR...) through OpenImageIO,
+ * loaded only when such a file is met (sh_image_int.h).
  *
  * Reading decodes sRGB-encoded files (8- and 16-bit PNG, JPEG, ...) to linear
  * radiance; float formats (EXR, HDR) are taken as linear. Writing is atomic:

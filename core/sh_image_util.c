@@ -1,6 +1,6 @@
 /* The parts of sh_image.h that need no image library: allocation, bilinear
  * look-up and the sRGB transfer curve. Reading and writing files is in
- * sh_image.cpp, over OpenImageIO. */
+ * sh_image_io.c and the codecs of sh_image_int.h. */
 #include "sh_image.h"
 
 #include <math.h>

@@ -1,10 +1,9 @@
 /* Triangle meshes: files through assimp's C API, and heightfields. assimp
  * reads OBJ, PLY, glTF, STL, FBX and many more behind one call, applies the
- * node transforms and triangulates polygons, so the loader stays small. */
+ * node transforms and triangulates polygons, so the loader stays small. It
+ * is loaded on the first mesh file (sh_assimp.h), not linked. */
 #include "sh_mesh.h"
 
-#include <assimp/cfileio.h>
-#include <assimp/cimport.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -17,7 +16,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "sh_assimp.h"
 #include "sh_confine.h"
+#include "sh_file.h"
 
 void sh_mesh_free(sh_mesh *mesh) {
   if (!mesh)
@@ -141,15 +142,13 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
 
   /* assimp reports a missing file like any other failure: tell them apart
    * first. */
-  struct stat st;
-  if (stat(path, &st) != 0 || access(path, R_OK) != 0) {
-    int e = errno;
-    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
-                        strerror(e));
-  }
-  if (S_ISDIR(st.st_mode))
-    return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
-                        strerror(EISDIR));
+  sh_status rs = sh_file_readable(path, NULL, err);
+  if (rs != SH_OK)
+    return rs;
+
+  const sh__assimp *ai = sh__assimp_get(path, err);
+  if (!ai)
+    return SH_ERR_MESH;
 
   char *own_root = root ? NULL : dir_of(path);
   if (!root && !own_root)
@@ -160,14 +159,14 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
   fs.io.CloseProc = fs_close;
   fs.io.UserData = (aiUserData)(void *)&fs;
   fs.root = root ? root : own_root;
-  const struct aiScene *scene = aiImportFileEx(
+  const struct aiScene *scene = ai->import_file_ex(
       path,
       aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
           aiProcess_PreTransformVertices | aiProcess_SortByPType,
       &fs.io);
   if (fs.refused[0]) {
     /* Refused whether or not assimp went on without the file. */
-    if (scene) aiReleaseImport(scene);
+    if (scene) ai->release_import(scene);
     sh_status st = sh_error_set(
         err, SH_ERR_MESH,
         "the mesh '%s' names the file '%s', which lies outside the scene's "
@@ -178,7 +177,7 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
   }
   free(own_root);
   if (!scene) {
-    const char *msg = aiGetErrorString();
+    const char *msg = ai->get_error_string();
     return sh_error_set(err, SH_ERR_MESH, "cannot load mesh '%s': %s", path,
                         msg && *msg ? msg : "assimp could not read it");
   }
@@ -197,13 +196,13 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
     }
   }
   if (ntris == 0) {
-    aiReleaseImport(scene);
+    ai->release_import(scene);
     return sh_error_set(err, SH_ERR_MESH,
                         "cannot load mesh '%s': it has no triangles", path);
   }
   sh_status s = sh__mesh_alloc(mesh, nverts, ntris, path, err);
   if (s != SH_OK) {
-    aiReleaseImport(scene);
+    ai->release_import(scene);
     return s;
   }
 
@@ -218,7 +217,7 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
       for (int k = 0; k < 3; k++) {
         unsigned idx = face->mIndices[k];
         if (idx >= am->mNumVertices) {
-          aiReleaseImport(scene);
+          ai->release_import(scene);
           sh_mesh_free(mesh);
           return sh_error_set(err, SH_ERR_MESH,
                               "cannot load mesh '%s': a face refers to "
@@ -237,7 +236,7 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
       p[1] = am->mVertices[v].y;
       p[2] = am->mVertices[v].z;
       if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) {
-        aiReleaseImport(scene);
+        ai->release_import(scene);
         sh_mesh_free(mesh);
         return sh_error_set(err, SH_ERR_MESH,
                             "cannot load mesh '%s': vertex %u of mesh %u is "
@@ -249,7 +248,7 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
     v0 += am->mNumVertices;
     t0 += t;
   }
-  aiReleaseImport(scene);
+  ai->release_import(scene);
   return SH_OK;
 }
 

@@ -13,7 +13,7 @@ set -eu
 # loads its GL at run time: EGL through libglvnd with Mesa's driver (llvmpipe
 # where there is no GPU), or OSMesa as the fallback (gl_shafts/gs_context.h).
 build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
-  libegl-dev libgl-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
+  libegl-dev libgl-dev libopenexr-dev libpng-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
 gl_pkgs="libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6"
 peer_pkgs="povray blender xvfb xauth"
 # The validation's Slurm executor and its single-node test cluster

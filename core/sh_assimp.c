@@ -1,0 +1,48 @@
+/* assimp's C API through dlopen (sh_assimp.h). */
+#include "sh_assimp.h"
+
+#include <dlfcn.h>
+#include <pthread.h>
+#include <stdio.h>
+
+#ifndef SH_ASSIMP_SONAME
+#define SH_ASSIMP_SONAME "libassimp.so.5"
+#endif
+
+static pthread_once_t sh__assimp_once = PTHREAD_ONCE_INIT;
+static sh__assimp sh__assimp_fns;
+static int sh__assimp_ok;
+static char sh__assimp_why[512];
+
+static void sh__assimp_load(void) {
+  void *h = dlopen(SH_ASSIMP_SONAME, RTLD_NOW | RTLD_LOCAL);
+  if (!h) {
+    const char *e = dlerror();
+    snprintf(sh__assimp_why, sizeof sh__assimp_why, "%s",
+             e ? e : "dlopen failed");
+    return;
+  }
+  /* POSIX dlsym returns data pointers; converting them to function
+   * pointers is what dlsym is for. */
+  *(void **)&sh__assimp_fns.import_file_ex = dlsym(h, "aiImportFileEx");
+  *(void **)&sh__assimp_fns.get_error_string = dlsym(h, "aiGetErrorString");
+  *(void **)&sh__assimp_fns.release_import = dlsym(h, "aiReleaseImport");
+  if (!sh__assimp_fns.import_file_ex || !sh__assimp_fns.get_error_string ||
+      !sh__assimp_fns.release_import) {
+    snprintf(sh__assimp_why, sizeof sh__assimp_why,
+             "it lacks aiImportFileEx, aiGetErrorString or aiReleaseImport");
+    return;
+  }
+  sh__assimp_ok = 1;
+}
+
+const sh__assimp *sh__assimp_get(const char *path, sh_error *err) {
+  pthread_once(&sh__assimp_once, sh__assimp_load);
+  if (sh__assimp_ok)
+    return &sh__assimp_fns;
+  sh_error_set(err, SH_ERR_MESH,
+               "cannot load mesh '%s': assimp (" SH_ASSIMP_SONAME
+               ") could not be loaded: %s",
+               path, sh__assimp_why);
+  return NULL;
+}
