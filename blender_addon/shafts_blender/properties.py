@@ -124,8 +124,11 @@ class ShaftsMaterialSettings(bpy.types.PropertyGroup):
 
 def sweep_options(settings):
     """The gs_options fields (a dict for shafts.SweepRenderer) of a scene's
-    ShaftsSweepSettings."""
-    return {
+    ShaftsSweepSettings. Planes, Shadow Map and Light Map at 0 mean "the
+    renderer decides" (by the light's kind, each map at its own size):
+    they are left out, as the command line leaves out an option not given,
+    since gs_options_set takes only explicit values (1 and up)."""
+    options = {
         "planes": settings.planes,
         "lattice_u": settings.lattice,
         "lattice_v": settings.lattice,
@@ -136,6 +139,11 @@ def sweep_options(settings):
         "sub_angle_deg": settings.sub_angle_deg,
         "sub_texels": settings.sub_texels,
     }
+    return {key: value for key, value in options.items()
+            if not (key in _RENDERER_DECIDES_AT_ZERO and value == 0)}
+
+
+_RENDERER_DECIDES_AT_ZERO = ("planes", "shadow_map_res", "light_map_res")
 
 
 def tracer_arguments(settings, spp=None):
