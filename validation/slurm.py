@@ -301,10 +301,11 @@ class SlurmExecutor:
                     # A task cancelled before it left the array's pending
                     # record leaves no record of its own.
                     state, code = states.get(i, ("UNKNOWN" if log.exists() else
-                                                 "REMOVED before it started (cancelled)", ""))
+                                                 "CANCELLED before it started (no record "
+                                                 "of it is left)", ""))
                     fatal = code.split(":")[0] in (str(NO_CACHE), str(MISMATCH))
-                    why = "Slurm task %s_%d ended %s (exit %s) on attempt %d; log %s%s" % (
-                        job, i, state, code or "?", attempt, log,
+                    why = "Slurm task %s_%d ended %s%s on attempt %d; log %s%s" % (
+                        job, i, state, " (exit %s)" % code if code else "", attempt, log,
                         "" if log.exists() else " (none: the task never started)")
                     tail = log.read_text(errors="replace").strip().splitlines()[-1:] \
                         if log.exists() else []
