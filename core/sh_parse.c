@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sh_json_locate.h"
 #include "sh_parse_int.h"
 
 static const char *const top_keys[] = {
@@ -32,10 +33,6 @@ static const char *const render_keys[] = {
     "spp",    "max_depth",      "seed", "exposure",  "planes", "lattice",
     "light_map_res", "shadow_map_res", "xi", "jitter", "mesh_step", "kl",
     "scheme", NULL};
-/* In the order of sh_xi_mode and sh_lmm_scheme, after DEFAULT. */
-static const char *const xi_names[] = {"lattice", "exact", NULL};
-static const char *const scheme_names[] = {"straight", "refract-trace",
-                                           "refract-both", NULL};
 /* In the order of sh_phase_type. */
 static const char *const phase_names[] = {"isotropic",    "henyey_greenstein",
                                           "nishita_hazy", "nishita_murky",
@@ -179,50 +176,55 @@ static sh_status parse_materials(sh__parser *p, json_t *root) {
 
 /* ---- Render settings (the project's own keys) ---- */
 
-/* The keys of gl_shafts and of the light meshes method. */
-static sh_status parse_render_tools(sh__pctx *c, json_t *o,
-                                    sh_render_settings *r) {
-  long long planes, lmres, smres, lat[2] = {0, 0};
-  int xi, scheme, jitter;
-  json_t *a;
-  sh_status st;
-  if ((st = sh__integer(c, o, "planes", 0, 0, 1, 100000, &planes)) ||
-      (st = sh__integer(c, o, "light_map_res", 0, 0, 1, 16384, &lmres)) ||
-      (st = sh__integer(c, o, "shadow_map_res", 0, 0, 1, 16384, &smres)) ||
-      (st = sh__choice(c, o, "xi", 0, xi_names, -1, "xi mode", &xi)) ||
-      (st = sh__choice(c, o, "scheme", 0, scheme_names, -1,
-                       "light meshes scheme", &scheme)) ||
-      (st = sh__number(c, o, "mesh_step", 0, 0, sh__gt0, &r->mesh_step)) ||
-      (st = sh__number(c, o, "kl", 0, 0, sh__gt0, &r->kl)) ||
-      (st = sh__array(c, o, "lattice", 0, &a)))
-    return st;
-  jitter = -1;
-  if (json_object_get(o, "jitter") &&
-      (st = sh__boolean(c, o, "jitter", 1, 0, &jitter)))
-    return st;
-  if (a) {
-    sh__push_key(c, "lattice");
-    if (json_array_size(a) != 2)
-      return sh__wrong(c, a, "an array of 2 integers [nu, nv], each >= 2");
-    for (int i = 0; i < 2; i++) {
-      json_t *v = json_array_get(a, (size_t)i);
-      double x = json_is_number(v) ? json_number_value(v) : 0;
-      if (!json_is_number(v) || x != floor(x) || x < 2 || x > 65536) {
-        sh__push_index(c, i);
-        return sh__wrong(c, v, "an integer in [2, 65536]");
-      }
-      lat[i] = (long long)x;
-    }
-    sh__pop(c);
+/* A renderer's key as option text (sh_render_param). */
+static char *option_text(const json_t *v) {
+  char buf[512];
+  size_t n = 0;
+  buf[0] = '\0';
+  if (json_is_string(v)) return strdup(json_string_value(v));
+  if (json_is_boolean(v)) return strdup(json_is_true(v) ? "true" : "false");
+  if (json_is_number(v)) {
+    sh__fmt_num(json_number_value(v), buf, sizeof buf);
+    return strdup(buf);
   }
-  r->planes = (int)planes;
-  r->light_map_res = (int)lmres;
-  r->shadow_map_res = (int)smres;
-  r->lattice_u = (int)lat[0];
-  r->lattice_v = (int)lat[1];
-  r->xi = (sh_xi_mode)(xi + 1);
-  r->scheme = (sh_lmm_scheme)(scheme + 1);
-  r->jitter = jitter;
+  if (json_is_array(v)) {
+    for (size_t i = 0; i < json_array_size(v) && n < sizeof buf; i++) {
+      const json_t *e = json_array_get(v, i);
+      char num[40] = "?";
+      if (json_is_number(e)) sh__fmt_num(json_number_value(e), num, sizeof num);
+      n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%s", i ? " " : "", num);
+    }
+    return strdup(buf);
+  }
+  return strdup(json_is_object(v) ? "an object" : "null");
+}
+
+/* The keys gl_shafts and the light meshes method own, kept with their
+ * places for the renderer to check. */
+static sh_status keep_render_params(sh__pctx *c, json_t *o,
+                                    sh_render_settings *r) {
+  static const char *const own[] = {"spp", "max_depth", "seed", "exposure",
+                                    NULL};
+  const char *key;
+  json_t *v;
+  size_t n = json_object_size(o);
+  r->params = n ? calloc(n, sizeof *r->params) : NULL;
+  if (n && !r->params) return sh__fail(c, SH_ERR_NOMEM, "out of memory");
+  json_object_foreach(o, key, v) {
+    int core = 0;
+    for (int i = 0; own[i]; i++) core |= !strcmp(key, own[i]);
+    if (core) continue;
+    sh_render_param *q = &r->params[r->nparams++];
+    q->key = strdup(key);
+    q->text = option_text(v);
+    q->json = json_dumps(v, JSON_COMPACT | JSON_ENCODE_ANY);
+    if (!q->key || !q->text || !q->json)
+      return sh__fail(c, SH_ERR_NOMEM, "out of memory");
+    sh__jseg path[2] = {{"render", 0}, {key, 0}};
+    size_t at;
+    if (c->text && sh__json_locate(c->text, c->len, path, 2, 0, &at))
+      sh__json_linecol(c->text, at, &q->line, &q->column);
+  }
   return SH_OK;
 }
 
@@ -236,7 +238,6 @@ static sh_status parse_render(sh__parser *p, json_t *root) {
   r->max_depth = 5;
   r->seed = 0;
   r->exposure = 0;
-  r->jitter = -1;
   if ((st = sh__object(c, root, "render", 0, &o)) || !o) return st;
   sh__push_key(c, "render");
   if ((st = sh__check_keys(c, o, SH__KEYS(render_keys),
@@ -249,7 +250,7 @@ static sh_status parse_render(sh__parser *p, json_t *root) {
   r->spp = (int)spp;
   r->max_depth = (int)depth;
   r->seed = (unsigned)seed;
-  if ((st = parse_render_tools(c, o, r))) return st;
+  if ((st = keep_render_params(c, o, r))) return st;
   sh__pop(c);
   return SH_OK;
 }

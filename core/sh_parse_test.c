@@ -288,6 +288,26 @@ static void test_full_scene(void) {
   "\"camera\": {\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], "             \
   "\"fov_y_deg\": 40, \"width\": 8, \"height\": 6}"
 
+/* The renderers' render keys are kept as given, with their places, for the
+ * renderer to check (gl_shafts' and lmm_tracer's tests check the refusals). */
+static void test_render_params(void) {
+  sh_error err;
+  sh_scene *s = NULL;
+  SH_CHECK(sh_scene_parse(MINIMAL_HEAD ",\n\"render\": {\"spp\": 4, "
+                          "\"lattice\": [20, 1], \"xi\": \"exakt\"}}",
+                          "mem.json", NULL, &s, &err) == SH_OK);
+  if (!s) return;
+  SH_CHECK(s->render.spp == 4 && s->render.nparams == 2);
+  if (s->render.nparams == 2) {
+    const sh_render_param *q = &s->render.params[0];
+    SH_CHECK(!strcmp(q->key, "lattice") && !strcmp(q->text, "20 1") &&
+             !strcmp(q->json, "[20,1]") && q->line == 3 && q->column == 33);
+    q = &s->render.params[1];
+    SH_CHECK(!strcmp(q->key, "xi") && !strcmp(q->text, "exakt"));
+  }
+  sh_scene_free(s);
+}
+
 static void test_defaults(void) {
   sh_error err;
   sh_scene *s = NULL;
@@ -296,8 +316,7 @@ static void test_defaults(void) {
   SH_CHECK(s != NULL);
   if (!s) return;
   SH_CHECK(strcmp(s->file, "mem.json") == 0);
-  SH_CHECK(s->render.planes == 0 && s->render.xi == SH_XI_DEFAULT);
-  SH_CHECK(s->render.jitter == -1 && s->render.scheme == SH_SCHEME_DEFAULT);
+  SH_CHECK(s->render.nparams == 0 && s->render.spp == 16);
   check_vec(s->camera.up, 0, 1, 0);
   check_vec(s->background, 0, 0, 0);
   check_vec(s->ambient, 0, 0, 0);
@@ -666,18 +685,6 @@ static const bad_case bad_cases[] = {
      "expected an integer from 1 to 2147483647, found the number 0"},
     {HEAD "\"render\": {\"exposure\": \"high\"}}", SH_ERR_SCENE, 3, 24,
      "render.exposure", "expected a finite number, found the string"},
-    {HEAD "\"render\": {\"lattice\": [20]}}", SH_ERR_SCENE, 3, 23,
-     "render.lattice", "an array of 2 integers"},
-    {HEAD "\"render\": {\"lattice\": [20, 1]}}", SH_ERR_SCENE, 3, 28,
-     "render.lattice[1]", "an integer in [2, 65536]"},
-    {HEAD "\"render\": {\"xi\": \"exakt\"}}", SH_ERR_SCENE, 3, 18,
-     "render.xi", "did you mean 'exact'"},
-    {HEAD "\"render\": {\"scheme\": \"both\"}}", SH_ERR_SCENE, 3, 22,
-     "render.scheme", "refract-both"},
-    {HEAD "\"render\": {\"kl\": 0}}", SH_ERR_SCENE, 3, 18, "render.kl",
-     "expected a number > 0"},
-    {HEAD "\"render\": {\"jitter\": 1}}", SH_ERR_SCENE, 3, 22,
-     "render.jitter", "expected true or false"},
     {HEAD "\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
           "\"intensity\": [1, 1, 1], \"soft_shadow\": false}]}",
      SH_ERR_SCENE, 3, 77, "lights[0].soft_shadow",
@@ -917,6 +924,7 @@ int main(void) {
   write_fixtures();
   test_full_scene();
   test_defaults();
+  test_render_params();
   test_phase_types();
   test_bounds();
   test_bad_cases();

@@ -18,6 +18,12 @@ void sh_scene_free(sh_scene *scene) {
     sh_mesh_free(&scene->shapes[i].mesh);
   }
   free(scene->shapes);
+  for (int i = 0; i < scene->render.nparams; i++) {
+    free(scene->render.params[i].key);
+    free(scene->render.params[i].text);
+    free(scene->render.params[i].json);
+  }
+  free(scene->render.params);
   free(scene->file);
   free(scene->base_dir);
   free(scene);

@@ -112,40 +112,28 @@ typedef struct sh_shape {
   sh_mesh mesh;        /* mesh, heightfield: object-space triangles; owned */
 } sh_shape;
 
-/* How gl_shafts evaluates the scattering term xi. */
-typedef enum sh_xi_mode {
-  SH_XI_DEFAULT, /* the renderer's default */
-  SH_XI_LATTICE, /* on the plane lattice, interpolated (the seed's method) */
-  SH_XI_EXACT    /* per fragment */
-} sh_xi_mode;
+/* A key of the scene's `render` object that a renderer owns (gl_shafts'
+ * planes, lattice, light_map_res, shadow_map_res, xi, jitter; the light
+ * meshes' mesh_step, kl, scheme). The parser keeps it as given, with where
+ * it stands, and the renderer that owns it checks it against its own
+ * option table (sh_render_params.h): one limit, one message, located. */
+typedef struct sh_render_param {
+  char *key;   /* owned */
+  char *text;  /* the value as option text: a number, a name, "true" or
+                  "false", an array's numbers joined by spaces; owned */
+  char *json;  /* the value as compact JSON text; owned */
+  int line, column; /* of the value in the scene file; 0 if unknown */
+} sh_render_param;
 
-/* Which paths the light meshes method refracts (Debelov et al., fig. 4). */
-typedef enum sh_lmm_scheme {
-  SH_SCHEME_DEFAULT,
-  SH_SCHEME_STRAIGHT,      /* refraction ignored everywhere */
-  SH_SCHEME_REFRACT_TRACE, /* refraction in traced rays only */
-  SH_SCHEME_REFRACT_BOTH   /* refraction in traced rays and visibility */
-} sh_lmm_scheme;
-
-/* Per-renderer defaults from the scene's `render` object; command-line
- * options override them. A value of 0 (or the DEFAULT enumerator, or -1
- * for jitter) means "not given: the renderer chooses". */
+/* The scene's `render` object: the reference's settings, parsed and
+ * checked by the core, and the renderers' keys, kept for them. */
 typedef struct sh_render_settings {
   int spp;          /* reference: in-scattering samples per pixel, default 16 */
   int max_depth;    /* Whitted recursion limit, default 5 */
   unsigned seed;    /* default 0 */
   double exposure;  /* PNG exposure in stops, default 0 */
-  /* gl_shafts */
-  int planes;                 /* virtual planes */
-  int lattice_u, lattice_v;   /* lattice points per plane */
-  int light_map_res;          /* light-map texture size */
-  int shadow_map_res;         /* shadow-map size */
-  sh_xi_mode xi;
-  int jitter;                 /* -1 unset, 0 off, 1 on */
-  /* lmm_tracer, light meshes */
-  double mesh_step;           /* h, scene units */
-  double kl;                  /* interpolation radius r = h * kl */
-  sh_lmm_scheme scheme;
+  int nparams;
+  sh_render_param *params; /* owned; in the file's order */
 } sh_render_settings;
 
 typedef struct sh_scene {

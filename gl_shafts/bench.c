@@ -25,7 +25,7 @@ static const char *const TOOL = "gl_shafts_bench";
 /* What sweeps override, per run: 0 (or xi DEFAULT) leaves the options. */
 typedef struct sweep {
   int planes, lattice;
-  sh_xi_mode xi;
+  gs_xi_mode xi;
 } sweep;
 
 typedef struct args {
@@ -141,7 +141,7 @@ static sh_status run(const char *path, sh_scene *scene,
   if (st0 != SH_OK) return st0;
   if (sw->planes) o.planes = sw->planes;
   if (sw->lattice) o.lattice_u = o.lattice_v = sw->lattice;
-  if (sw->xi != SH_XI_DEFAULT) o.xi = sw->xi;
+  if (sw->xi != GS_XI_DEFAULT) o.xi = sw->xi;
   double t0 = sh_seconds();
   gs_renderer *r = NULL;
   sh_status st = gs_renderer_create(scene, &o, &r, err);
@@ -268,8 +268,8 @@ int main(int argc, char **argv) {
       for (int l = 0; l < nls && rc == 0; l++)
         for (int x = 0; x < nxs && rc == 0; x++) {
           sweep sw = {np ? (int)sweep_p[p] : 0, nl ? (int)sweep_l[l] : 0,
-                      a.sweep_xi ? (x ? SH_XI_EXACT : SH_XI_LATTICE)
-                                 : SH_XI_DEFAULT};
+                      a.sweep_xi ? (x ? GS_XI_EXACT : GS_XI_LATTICE)
+                                 : GS_XI_DEFAULT};
           if (run(path, scene, &parsed, &sw, (int)a.frames,
                   a.spp > 0 ? &ref : NULL, a.diffdir, &err) != SH_OK)
             rc = sh_cli_report(TOOL, &err);

@@ -104,6 +104,11 @@ for kv in '"planes_local": 4' '"shadow_map_res_local": 1024'; do
 done
 grep -q '"planes_directional"\|"planes_per_light"\|by light kind' "$dir/k.json" \
   && { echo "FAIL: stats of lights not in the scene, or text for a number"; fail=1; }
+# render.lattice has gl_shafts' one limit, reported at its place.
+sed 's/"lattice": \[3, 4\]/"lattice": [5000, 5000]/' "$dir/good.json" >"$dir/lattice.json"
+"$tool" "$dir/lattice.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "render.lattice 5000" 2 $?
+grep -q "lattice.json:9:[0-9]*: render.lattice: expected an integer from 2 to 4096" "$dir/err" \
+  || { echo "FAIL: render.lattice message: $(cat "$dir/err")"; fail=1; }
 run_bad "--lattice 5000 5000 (the renderer's limit)" "$dir/good.json" -o "$dir/x.exr" --lattice 5000 5000
 # The same command gives the same image (pixels, not bytes: EXR headers
 # carry the time).

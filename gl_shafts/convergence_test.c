@@ -178,7 +178,7 @@ int main(void) {
   if (s && tu_gl(s, &o, &exact) == SH_OK) {
     double prev = 1e9;
     for (int n = 6; n <= 48; n *= 2) {
-      o.xi = SH_XI_LATTICE;
+      o.xi = GS_XI_LATTICE;
       o.lattice_u = o.lattice_v = n;
       sh_image img = {0};
       SH_CHECK(tu_gl(s, &o, &img) == SH_OK);

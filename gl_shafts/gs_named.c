@@ -7,8 +7,9 @@
 
 #include "sh_json_out.h"
 #include "sh_options.h"
+#include "sh_render_params.h"
 
-/* In the order of sh_xi_mode after DEFAULT, and of gs_backend. */
+/* In the order of gs_xi_mode after DEFAULT, and of gs_backend. */
 static const char *const xi_names[] = {"lattice", "exact", NULL};
 static const char *const backend_names[] = {"auto", "egl", "osmesa", NULL};
 
@@ -27,7 +28,7 @@ static const sh__opt options[] = {
     {OPT(light_map_res), SH__OPT_INT, 1, 16384, 0, NULL, 0, 1, 0, 0},
     /* 0: by the light's kind (GS_DEFAULT_SHADOW_*) */
     {OPT(shadow_map_res), SH__OPT_INT, 1, 16384, 0, NULL, 0, 1, 0, 0},
-    {OPT(xi), SH__OPT_CHOICE, 0, 0, 0, xi_names, SH_XI_LATTICE, 0, 0, 0},
+    {OPT(xi), SH__OPT_CHOICE, 0, 0, 0, xi_names, GS_XI_LATTICE, 0, 0, 0},
     {OPT(jitter), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
     {OPT(sub_angle_deg), SH__OPT_DOUBLE, 0, 30, 1, NULL, 0, 0, 0, 0},
     {OPT(sub_texels), SH__OPT_DOUBLE, 0, 1e6, 1, NULL, 0, 0, 0, 0},
@@ -38,19 +39,40 @@ static const sh__opt options[] = {
 #undef OPT
 enum { NOPTIONS = sizeof options / sizeof *options };
 
-gs_options gs_options_defaults(const sh_scene *scene) {
+/* The render keys gl_shafts owns (docs/scene-format.md, "render"); each is
+ * the option of the same name. */
+static const char *const render_keys[] = {"planes", "lattice", "light_map_res",
+                                          "shadow_map_res", "xi", "jitter",
+                                          NULL};
+
+static gs_options builtin(void) {
   gs_options o;
   memset(&o, 0, sizeof o);
-  const sh_render_settings *r = &scene->render;
-  o.planes = r->planes > 0 ? r->planes : 0;
-  o.lattice_u = r->lattice_u > 0 ? r->lattice_u : GS_DEFAULT_LATTICE;
-  o.lattice_v = r->lattice_v > 0 ? r->lattice_v : GS_DEFAULT_LATTICE;
-  o.light_map_res = r->light_map_res > 0 ? r->light_map_res : 0;
-  o.shadow_map_res = r->shadow_map_res > 0 ? r->shadow_map_res : 0;
-  o.xi = r->xi != SH_XI_DEFAULT ? r->xi : GS_DEFAULT_XI;
-  o.jitter = r->jitter >= 0 ? r->jitter : GS_DEFAULT_JITTER;
+  o.lattice_u = o.lattice_v = GS_DEFAULT_LATTICE;
+  o.xi = GS_DEFAULT_XI;
+  o.jitter = GS_DEFAULT_JITTER;
   o.sub_angle_deg = GS_DEFAULT_SUB_ANGLE_DEG;
   o.sub_texels = GS_DEFAULT_SUB_TEXELS;
+  return o;
+}
+
+sh_status gs_options_from_scene(const sh_scene *scene, gs_options *opt,
+                                sh_error *err) {
+  gs_options o = builtin();
+  sh_status st = sh__render_params_apply(scene, options, NOPTIONS, &o,
+                                         render_keys, err);
+  if (st == SH_OK) *opt = o;
+  return st;
+}
+
+gs_options gs_options_defaults(const sh_scene *scene) {
+  gs_options o = builtin();
+  /* Key by key, so that a bad one (which gs_options_from_scene and
+   * gs_renderer_create report) leaves the others applied. */
+  for (int k = 0; render_keys[k]; k++) {
+    const char *one[] = {render_keys[k], NULL};
+    sh__render_params_apply(scene, options, NOPTIONS, &o, one, NULL);
+  }
   return o;
 }
 

@@ -13,6 +13,13 @@
 extern "C" {
 #endif
 
+/* The options the scene's render keys give (planes, lattice,
+ * light_map_res, shadow_map_res, xi, jitter) over the built-in defaults,
+ * each checked against the table gs_options_set reads: a bad one is
+ * SH_ERR_SCENE at its file, line and column, key path "render.KEY". */
+sh_status gs_options_from_scene(const sh_scene *scene, gs_options *opt,
+                                sh_error *err);
+
 /* gs_options_defaults(scene) on the heap (NULL if out of memory); free
  * with gs_options_free. */
 gs_options *gs_options_new(const sh_scene *scene);

@@ -10,6 +10,7 @@
 #include "gs_gl.h"
 #include "gs_lattice.h"
 #include "gs_lightvol.h"
+#include "gs_named.h"
 #include "gs_program.h"
 #include "gs_shadow.h"
 #include "gs_surface.h"
@@ -68,7 +69,7 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
   int maxplanes = gs_light_planes(o, SH_LIGHT_DIRECTIONAL);
   if (gs_light_planes(o, SH_LIGHT_SPOT) > maxplanes)
     maxplanes = gs_light_planes(o, SH_LIGHT_SPOT);
-  if (o->xi == SH_XI_LATTICE &&
+  if (o->xi == GS_XI_LATTICE &&
       (o->lattice_u > max3d || o->lattice_v > max3d || maxplanes + 1 > max3d))
     return sh_error_set(err, SH_ERR_ARG,
                         "with xi on the lattice, the lattice (%dx%d) and planes "
@@ -157,13 +158,13 @@ static sh_status sync_maps(gs_renderer *r, sh_error *err) {
 sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err) {
   *out = NULL;
+  /* The scene's render keys are checked (with their places) even when the
+   * caller's options replace them: a scene with a bad key is refused. */
   gs_options defaults;
-  if (!opt) {
-    defaults = gs_options_defaults(scene);
-    opt = &defaults;
-  }
-  sh_status st = gs_options_check(opt, err);
+  sh_status st = gs_options_from_scene(scene, &defaults, err);
   if (st != SH_OK) return st;
+  if (!opt) opt = &defaults;
+  if ((st = gs_options_check(opt, err)) != SH_OK) return st;
   gs_renderer *r = calloc(1, sizeof *r);
   if (!r) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   r->scene = scene;
@@ -297,7 +298,7 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
                          o->sub_angle_deg * SH_PI / 180.0,
                          o->sub_texels,
                          lmres ? lmres : l->map.width, lmres ? lmres : l->map.height};
-    if (o->xi == SH_XI_LATTICE) {
+    if (o->xi == GS_XI_LATTICE) {
       long points = 0;
       st = gs__lattice_eval(&r->lattices[i], scene, &r->view, ls, o->lattice_u,
                             o->lattice_v, planes, map, &points, err);

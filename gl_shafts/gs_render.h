@@ -53,6 +53,13 @@ typedef enum gs_backend {
   GS_BACKEND_OSMESA
 } gs_backend;
 
+/* How the renderer evaluates the scattering term xi (render.xi, --xi). */
+typedef enum gs_xi_mode {
+  GS_XI_DEFAULT, /* the renderer's default (GS_DEFAULT_XI) */
+  GS_XI_LATTICE, /* on the plane lattice, interpolated (the seed's method) */
+  GS_XI_EXACT    /* per fragment */
+} gs_xi_mode;
+
 /* Rendering settings. gs_options_defaults fills them from the scene's
  * render object, with the built-in defaults below for keys it lacks. */
 typedef struct gs_options {
@@ -63,7 +70,7 @@ typedef struct gs_options {
                                resampled to R x R, 1..16384 */
   int shadow_map_res;       /* shadow-map size in texels, 1..16384; 0: by
                                the light's kind (GS_DEFAULT_SHADOW_*) */
-  sh_xi_mode xi;            /* SH_XI_LATTICE (the seed's) or SH_XI_EXACT */
+  gs_xi_mode xi;            /* GS_XI_LATTICE (the seed's) or GS_XI_EXACT */
   int jitter;               /* 1: per-pixel jitter of the sample depths */
   double sub_angle_deg;     /* point and spot lights: a plane's fragment
                                takes one sample per this angle (degrees)
@@ -104,12 +111,14 @@ typedef struct gs_options {
 #define GS_DEFAULT_LATTICE 20
 #define GS_DEFAULT_SHADOW_LOCAL 1024
 #define GS_DEFAULT_SHADOW_DIRECTIONAL 2048
-#define GS_DEFAULT_XI SH_XI_EXACT
+#define GS_DEFAULT_XI GS_XI_EXACT
 #define GS_DEFAULT_JITTER 0
 #define GS_DEFAULT_SUB_ANGLE_DEG 4.0
 #define GS_DEFAULT_SUB_TEXELS 2.0
 
-/* The defaults, overridden by the scene's render keys that are given. */
+/* The defaults, overridden by the scene's render keys that are given and
+ * valid (gs_options_from_scene, gs_named.h, reports a bad one with its
+ * place; gs_render and gs_renderer_create refuse a scene with one). */
 gs_options gs_options_defaults(const sh_scene *scene);
 
 /* The planes and shadow-map size a light of this kind gets with these

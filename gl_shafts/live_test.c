@@ -203,7 +203,7 @@ int main(void) {
   SH_CHECK(fresh(s, 1, &live, &st));
   live_vs_baked("live_vs_baked", s, NULL);
   gs_options lattice = gs_options_defaults(s);
-  lattice.xi = SH_XI_LATTICE;
+  lattice.xi = GS_XI_LATTICE;
   lattice.jitter = 1;
   live_vs_baked("live_vs_baked_lattice_jitter", s, &lattice);
   const char *src = getenv("SHAFTS_SOURCE_DIR");

@@ -42,6 +42,12 @@ near "noise estimate" "$(field "$dir/a.json" noise_rel_rms_estimate)" 0.5 0.5
 # A reference noisier than the 1% it is judged at says so.
 "$tool" "$dir/good.json" -o "$dir/n.exr" --spp 1 --width 64 2>"$dir/err"; check "noisy reference" 0 $?
 message_has "noisy reference" "$dir/err" "this reference's own noise is about"
+# render.scheme is the light meshes' option, checked by the renderer at its
+# place.
+basic_scene "$dir/scheme.json" 16 12 "$POINT_LIGHT" "" ', "render": {"scheme": "both"}'
+"$tool" "$dir/scheme.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "render.scheme both" 2 $?
+grep -q "scheme.json:9:[0-9]*: render.scheme: unknown value 'both'; expected one of: straight, refract-trace, refract-both" "$dir/err" \
+  || { echo "FAIL: render.scheme message: $(cat "$dir/err")"; fail=1; }
 # Pixels, not bytes: the EXR header carries the time of writing.
 idiff -fail 0 -failpercent 0 "$dir/a.exr" "$dir/b.exr" >/dev/null \
   || { echo "FAIL: same command, different image"; fail=1; }

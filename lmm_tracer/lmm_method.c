@@ -233,7 +233,7 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
     lmm_free(L);
     return st;
   }
-  if (opt->scheme == SH_SCHEME_REFRACT_BOTH && L->semi) {
+  if (opt->scheme == LMM_SCHEME_REFRACT_BOTH && L->semi) {
     double t0 = sh_seconds();
     st = lmm_caustics_build(scene, rt, lmm_mesh_grid(L->mesh), opt->caustic_rays,
                             opt->cancel, &L->caustics, err);

@@ -26,10 +26,19 @@
 #include "lmm_mesh.h"
 #include "sh_reference.h"
 
+/* Which paths the light meshes method refracts (Debelov et al., fig. 4;
+ * render.scheme, --scheme). */
+typedef enum lmm_scheme {
+  LMM_SCHEME_DEFAULT,
+  LMM_SCHEME_STRAIGHT,      /* refraction ignored everywhere */
+  LMM_SCHEME_REFRACT_TRACE, /* refraction in traced rays only */
+  LMM_SCHEME_REFRACT_BOTH   /* refraction in traced rays and visibility */
+} lmm_scheme;
+
 typedef struct lmm_options {
   double h;              /* mesh step, scene units */
   double kl;             /* interpolation radius in steps */
-  sh_lmm_scheme scheme;  /* which paths refract */
+  lmm_scheme scheme;  /* which paths refract */
   int64_t caustic_rays;  /* refract-both: rays per light and shape */
   int capacity_log2;     /* mesh table size (0: default) */
   int volume;            /* 1: the medium's visibility from the mesh too */

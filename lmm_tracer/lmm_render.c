@@ -9,13 +9,14 @@
 #include "sh_json_out.h"
 #include "sh_options.h"
 #include "sh_reference.h"
+#include "sh_render_params.h"
 #include "sh_rt.h"
 #include "sh_time.h"
 
 /* ---- Options by name ---- */
 
 static const char *const mode_names[] = {"reference", "whitted", "lmm", NULL};
-/* In the order of sh_lmm_scheme, after DEFAULT. */
+/* In the order of lmm_scheme, after DEFAULT. */
 static const char *const scheme_names[] = {"straight", "refract-trace",
                                            "refract-both", NULL};
 static const char *const volume_names[] = {"mesh", "exact", NULL};
@@ -25,7 +26,7 @@ static const char *const volume_names[] = {"mesh", "exact", NULL};
 #define OPT(field) #field, offsetof(lmm_render_options, field)
 static const sh__opt options[] = {
     {OPT(mode), SH__OPT_CHOICE, 0, 0, 0, mode_names, 0, 0, 0, 0},
-    {OPT(scheme), SH__OPT_CHOICE, 0, 0, 0, scheme_names, 1, 1, SH_SCHEME_DEFAULT, 0},
+    {OPT(scheme), SH__OPT_CHOICE, 0, 0, 0, scheme_names, 1, 1, LMM_SCHEME_DEFAULT, 0},
     {"volume", offsetof(lmm_render_options, volume_exact), SH__OPT_CHOICE, 0,
      0, 0, volume_names, 0, 0, 0, 0},
     {OPT(local), SH__OPT_BOOL, 0, 1, 0, NULL, 0, 0, 0, 0},
@@ -114,20 +115,28 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
   ro.progress = opt->progress;
   ro.progress_user = opt->progress_user;
   ro.cancel = opt->cancel;
-  sh_lmm_scheme scheme = opt->scheme ? opt->scheme : scene->render.scheme;
-  if (scheme == SH_SCHEME_DEFAULT) scheme = SH_SCHEME_REFRACT_TRACE;
-  ro.refract = scheme != SH_SCHEME_STRAIGHT;
-  if (opt->refined && scheme != SH_SCHEME_REFRACT_BOTH)
+  /* The scene's keys of the light meshes, through the options' table: a bad
+   * one is refused with its place even when an option replaces it. */
+  lmm_render_options keys;
+  lmm_render_options_init(&keys);
+  static const char *const render_keys[] = {"mesh_step", "kl", "scheme", NULL};
+  if ((st = sh__render_params_apply(scene, options, NOPTIONS, &keys,
+                                    render_keys, err)))
+    return st;
+  lmm_scheme scheme = opt->scheme ? opt->scheme : keys.scheme;
+  if (scheme == LMM_SCHEME_DEFAULT) scheme = LMM_SCHEME_REFRACT_TRACE;
+  ro.refract = scheme != LMM_SCHEME_STRAIGHT;
+  if (opt->refined && scheme != LMM_SCHEME_REFRACT_BOTH)
     return sh_error_set(err, SH_ERR_ARG,
                         "refined is a variant of the refract-both scheme");
-  if (scheme == SH_SCHEME_REFRACT_BOTH && opt->mode != LMM_MODE_LMM)
+  if (scheme == LMM_SCHEME_REFRACT_BOTH && opt->mode != LMM_MODE_LMM)
     return sh_error_set(err, SH_ERR_ARG,
                         "the refract-both scheme needs mode lmm: refracted "
                         "visibility comes from the light mesh");
   double h = opt->mesh_step > 0             ? opt->mesh_step
-             : scene->render.mesh_step > 0 ? scene->render.mesh_step
+             : keys.mesh_step > 0          ? keys.mesh_step
                                            : lmm_default_step(scene);
-  double kl = opt->kl > 0 ? opt->kl : scene->render.kl > 0 ? scene->render.kl : 2.0;
+  double kl = opt->kl > 0 ? opt->kl : keys.kl > 0 ? keys.kl : 2.0;
 
   sh_rt *rt = NULL;
   lmm *method = NULL;

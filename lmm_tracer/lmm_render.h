@@ -35,7 +35,7 @@ typedef enum lmm_mode {
  * settings decide, else the built-in default. */
 typedef struct lmm_render_options {
   lmm_mode mode;
-  sh_lmm_scheme scheme;   /* DEFAULT: render.scheme, else refract-trace */
+  lmm_scheme scheme;   /* DEFAULT: render.scheme, else refract-trace */
   int local;              /* 1: formula 1 (no mirror rays, no refraction) */
   int refined;            /* lmm, refract-both: the refined variant */
   int volume_exact;       /* lmm in a medium: 1 traces the volumetric
@@ -61,7 +61,7 @@ typedef struct lmm_render_options {
 
 typedef struct lmm_render_stats {
   lmm_mode mode;
-  sh_lmm_scheme scheme; /* the one used (never DEFAULT) */
+  lmm_scheme scheme; /* the one used (never DEFAULT) */
   int width, height, spp, max_depth, threads;
   uint64_t seed;
   double seconds;        /* the whole call: set-up and render */

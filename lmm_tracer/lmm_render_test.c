@@ -60,7 +60,7 @@ static void test_options(void) {
            o.mode == LMM_MODE_LMM);
   SH_CHECK(lmm_render_options_set(&o, "scheme", "refract-both", &err) ==
                SH_OK &&
-           o.scheme == SH_SCHEME_REFRACT_BOTH);
+           o.scheme == LMM_SCHEME_REFRACT_BOTH);
   SH_CHECK(lmm_render_options_set(&o, "volume", "exact", &err) == SH_OK &&
            o.volume_exact == 1);
   SH_CHECK(lmm_render_options_set(&o, "refined", "true", &err) == SH_OK &&
@@ -92,7 +92,7 @@ static void test_modes(const sh_scene *s) {
   SH_CHECK(sh_render_reference(s, &ro, &ref, NULL, &err) == SH_OK);
   SH_CHECK(ref.rgb && memcmp(ref.rgb, rgb, sizeof *rgb * (size_t)n) == 0);
   SH_CHECK(st.mode == LMM_MODE_REFERENCE && st.spp == 2 && !st.has_lmm &&
-           st.scheme == SH_SCHEME_REFRACT_TRACE && st.width == 48 &&
+           st.scheme == LMM_SCHEME_REFRACT_TRACE && st.width == 48 &&
            st.camera_rays == 48 * 32 && st.seconds >= st.render_seconds);
   sh_image_free(&ref);
 

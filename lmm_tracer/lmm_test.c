@@ -26,11 +26,11 @@ static sh_scene *parse(const char *json) {
 
 /* Renders with the tracer; h > 0 selects the light meshes method. */
 static void render(const sh_scene *s, const sh_rt *rt, double h, double kl,
-                   sh_lmm_scheme scheme, sh_image *img, lmm_stats *stats) {
+                   lmm_scheme scheme, sh_image *img, lmm_stats *stats) {
   sh_reference_options opt = sh_reference_defaults(s);
   opt.threads = 2;
   opt.rt = rt;
-  opt.refract = scheme != SH_SCHEME_STRAIGHT;
+  opt.refract = scheme != LMM_SCHEME_STRAIGHT;
   lmm *method = NULL;
   if (h > 0) {
     lmm_options lo = {h, kl, scheme, 200000, 0, 1, 0, NULL};
@@ -78,9 +78,9 @@ static void properties(void) {
   sh_camera_frame_init(&s->camera, &f);
   double h = 0.1, kl = 2.0, r = h * kl;
   sh_image rrta = {0}, lm = {0};
-  render(s, rt, 0, 0, SH_SCHEME_REFRACT_TRACE, &rrta, NULL);
+  render(s, rt, 0, 0, LMM_SCHEME_REFRACT_TRACE, &rrta, NULL);
   lmm_stats st;
-  render(s, rt, h, kl, SH_SCHEME_REFRACT_TRACE, &lm, &st);
+  render(s, rt, h, kl, LMM_SCHEME_REFRACT_TRACE, &lm, &st);
   SH_CHECK(st.mesh.bits == 1);
   SH_CHECK(st.mesh.points_computed > 0 &&
            st.mesh.points_computed < st.mesh.points_total / 5);
@@ -126,7 +126,7 @@ static void properties(void) {
   double prev = INFINITY;
   for (double hh = 0.2; hh > 0.02; hh /= 2) {
     sh_image img = {0};
-    render(s, rt, hh, kl, SH_SCHEME_REFRACT_TRACE, &img, NULL);
+    render(s, rt, hh, kl, LMM_SCHEME_REFRACT_TRACE, &img, NULL);
     double e = 0;
     for (int i = 0; i < img.width * img.height * 3; i++)
       e += (img.rgb[i] - rrta.rgb[i]) * (img.rgb[i] - rrta.rgb[i]);
@@ -166,7 +166,7 @@ static void no_leaks(void) {
   sh_rt *rt = NULL;
   SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
   sh_image img = {0};
-  render(s, rt, 0.1, 2.0, SH_SCHEME_REFRACT_TRACE, &img, NULL);
+  render(s, rt, 0.1, 2.0, LMM_SCHEME_REFRACT_TRACE, &img, NULL);
   /* Everything the camera sees is under the plate: the floor, lit by no
    * light, and the sheet's front, whose light is behind it. */
   double worst = 0;
@@ -223,7 +223,7 @@ static void semitransparent(void) {
   sh_camera_frame f;
   sh_camera_frame_init(&s->camera, &f);
   sh_image img = {0};
-  render(s, rt, 0.1, 2.0, SH_SCHEME_STRAIGHT, &img, NULL);
+  render(s, rt, 0.1, 2.0, LMM_SCHEME_STRAIGHT, &img, NULL);
   /* The camera looks down through the sphere; straight, its rays reach the
    * floor at the shadow's centre after two crossings (weight 0.36), so
    * the pixel shows 0.36 * t^2 * the lit floor. */
@@ -237,7 +237,7 @@ static void semitransparent(void) {
 
   /* refract-both: the mesh values straight below the sphere, against the
    * crossings of paraxial and marginal rays. */
-  lmm_options lo = {0.05, 2.0, SH_SCHEME_REFRACT_BOTH, 200000, 0, 1, 0, NULL};
+  lmm_options lo = {0.05, 2.0, LMM_SCHEME_REFRACT_BOTH, 200000, 0, 1, 0, NULL};
   double paraxial = 1.5 / (2.0 * 0.5); /* n R / (2 (n - 1)) from the centre */
   double marginal = axis_crossing(0.7, 1.5);
   fprintf(stderr, "focus expected between %.3f and %.3f below the centre "
@@ -285,7 +285,7 @@ static void semitransparent(void) {
     sh_reference_options opt = sh_reference_defaults(s);
     opt.rt = rt;
     lmm *method = NULL;
-    lmm_options ro = {0.1, 2.0, SH_SCHEME_REFRACT_BOTH, 50000, 0, 1, v, NULL};
+    lmm_options ro = {0.1, 2.0, LMM_SCHEME_REFRACT_BOTH, 50000, 0, 1, v, NULL};
     SH_CHECK(lmm_create(s, rt, &ro, 2, &method, NULL) == SH_OK);
     opt.threads = 2;
     opt.hook = lmm_hook(method);
@@ -345,8 +345,8 @@ static void controls(void) {
     sh_rt *rt = NULL;
     SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
     sh_image a = {0}, b = {0};
-    render(s, rt, 0, 0, SH_SCHEME_REFRACT_TRACE, &a, NULL);
-    render(s, rt, 0.1, 2.0, SH_SCHEME_REFRACT_TRACE, &b, NULL);
+    render(s, rt, 0, 0, LMM_SCHEME_REFRACT_TRACE, &a, NULL);
+    render(s, rt, 0.1, 2.0, LMM_SCHEME_REFRACT_TRACE, &b, NULL);
     double worst = 0;
     for (int i = 0; i < a.width * a.height * 3; i++)
       worst = fmax(worst, fabs(a.rgb[i] - b.rgb[i]));

@@ -137,22 +137,10 @@ static json_t *render(const sh_render_settings *r) {
                         r->max_depth, "seed", (json_int_t)r->seed, "exposure",
                         r->exposure);
   if (!o) return NULL;
-  if (r->planes > 0) json_object_set_new(o, "planes", json_integer(r->planes));
-  if (r->lattice_u > 0)
-    json_object_set_new(o, "lattice", json_pack("[ii]", r->lattice_u, r->lattice_v));
-  if (r->light_map_res > 0)
-    json_object_set_new(o, "light_map_res", json_integer(r->light_map_res));
-  if (r->shadow_map_res > 0)
-    json_object_set_new(o, "shadow_map_res", json_integer(r->shadow_map_res));
-  if (r->xi != SH_XI_DEFAULT)
-    json_object_set_new(o, "xi", json_string(r->xi == SH_XI_LATTICE ? "lattice" : "exact"));
-  if (r->jitter >= 0) json_object_set_new(o, "jitter", json_boolean(r->jitter));
-  if (r->mesh_step > 0) json_object_set_new(o, "mesh_step", json_real(r->mesh_step));
-  if (r->kl > 0) json_object_set_new(o, "kl", json_real(r->kl));
-  if (r->scheme != SH_SCHEME_DEFAULT) {
-    static const char *names[] = {"", "straight", "refract-trace", "refract-both"};
-    json_object_set_new(o, "scheme", json_string(names[r->scheme]));
-  }
+  /* The renderers' keys as the scene gave them (the renderers check them). */
+  for (int i = 0; i < r->nparams; i++)
+    json_object_set_new(o, r->params[i].key,
+                        json_loads(r->params[i].json, JSON_DECODE_ANY, NULL));
   return o;
 }
 
