@@ -459,6 +459,18 @@ int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
   return rc;
 }
 
+int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
+                        void *values, const sh_cli_render *r,
+                        sh_cli_args *parsed, sh_scene **scene) {
+  *scene = NULL;
+  int rc = sh_cli_parse(tool, argc, argv, values, parsed);
+  if (rc >= 0) return rc; /* --help, --version or a bad argument */
+  if ((rc = sh_cli_render_check(tool->name, r))) return rc;
+  if ((rc = sh_cli_render_scene(tool->name, r, parsed->operands[0], scene)))
+    return rc;
+  return -1;
+}
+
 double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene) {
   return isnan(r->exposure) ? scene->render.exposure : r->exposure;
 }

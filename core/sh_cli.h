@@ -200,6 +200,14 @@ int sh_cli_render_check(const char *tool, const sh_cli_render *r);
 int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
                         const char *path, sh_scene **scene);
 
+/* A renderer's start: sh_cli_parse into `values` (which holds `r`), the
+ * output checks (sh_cli_render_check) and the scene loaded from the one
+ * operand at the requested size (sh_cli_render_scene). Returns -1 with
+ * *scene set, or the status to exit with. */
+int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
+                        void *values, const sh_cli_render *r,
+                        sh_cli_args *parsed, sh_scene **scene);
+
 /* The PNG exposure: --exposure, else the scene's. */
 double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene);
 

@@ -167,12 +167,10 @@ int main(int argc, char **argv) {
   args a;
   sh_cli_render_init(&a.r);
   sh_cli_args parsed;
-  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
-  if (rc >= 0) return rc;
-  if ((rc = sh_cli_render_check(TOOL, &a.r))) return rc;
-  const char *scene_path = parsed.operands[0];
   sh_scene *scene = NULL;
-  if ((rc = sh_cli_render_scene(TOOL, &a.r, scene_path, &scene))) return rc;
+  int rc = sh_cli_render_start(&tool, argc, argv, &a, &a.r, &parsed, &scene);
+  if (rc >= 0) return rc;
+  const char *scene_path = parsed.operands[0];
   sh_error err;
   gs_options opt = gs_options_defaults(scene);
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {

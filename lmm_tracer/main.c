@@ -150,17 +150,16 @@ int main(int argc, char **argv) {
   args a;
   sh_cli_render_init(&a.r);
   sh_cli_args parsed;
-  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  sh_scene *scene = NULL;
+  int rc = sh_cli_render_start(&tool, argc, argv, &a, &a.r, &parsed, &scene);
   if (rc >= 0) return rc;
+  const char *scene_path = parsed.operands[0];
   sh_error err;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
     fprintf(stderr, "%s: %s\n", TOOL, err.message);
+    sh_scene_free(scene);
     return SH_EXIT_BAD_INPUT;
   }
-  if ((rc = sh_cli_render_check(TOOL, &a.r))) return rc;
-  const char *scene_path = parsed.operands[0];
-  sh_scene *scene = NULL;
-  if ((rc = sh_cli_render_scene(TOOL, &a.r, scene_path, &scene))) return rc;
   sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
   double exposure = sh_cli_render_exposure(&a.r, scene);
 
@@ -177,6 +176,7 @@ int main(int argc, char **argv) {
   sh_progress_finish(&bar);
   if (status == SH_OK)
     status = write_outputs(&a, scene_path, &img, exposure, &st, &err);
+  rc = SH_EXIT_OK;
   if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else {

@@ -73,3 +73,15 @@ basic_scene() { # file, width, height, light (JSON), more shapes, more keys
 JSON
 }
 POINT_LIGHT='{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}'
+# A misspelled key (with its place and a suggestion) and a truncated file
+# are refused with 2, and nothing is left behind.
+bad_scenes_refused() { # tool, good scene (basic_scene's: the light on line 6)
+  sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$2" >"$dir/typo.json"
+  printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
+  "$1" "$dir/typo.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "misspelled key" 2 $?
+  grep -q "typo.json:6:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
+    || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
+  "$1" "$dir/truncated.json" -o "$dir/x.exr" -q 2>/dev/null; check "truncated" 2 $?
+  [ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
+  ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
+}
