@@ -460,11 +460,13 @@ int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
 }
 
 int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
-                        void *values, const sh_cli_render *r,
-                        sh_cli_args *parsed, sh_scene **scene) {
+                        sh_cli_render *r, sh_cli_args *parsed,
+                        sh_scene **scene) {
   *scene = NULL;
-  int rc = sh_cli_parse(tool, argc, argv, values, parsed);
+  sh_cli_render_init(r);
+  int rc = sh_cli_parse(tool, argc, argv, r, parsed);
   if (rc >= 0) return rc; /* --help, --version or a bad argument */
+  r->scene = parsed->operands[0];
   if ((rc = sh_cli_render_check(tool->name, r))) return rc;
   if ((rc = sh_cli_render_scene(tool->name, r, parsed->operands[0], scene)))
     return rc;

@@ -148,11 +148,12 @@ int sh_cli_given(const sh_cli_tool *tool, const sh_cli_args *args,
 /* The name of the choice with `value`, or "?". */
 const char *sh_cli_choice_name(const sh_cli_choice *choices, int value);
 
-/* What the renderers' command lines share (gl_shafts, lmm_tracer): their
- * outputs, --stats, --width/--height, --exposure, -q and -p. A tool puts
- * an sh_cli_render in its values struct and SH_CLI_RENDER_OPTIONS(its
- * struct, the member) into its option table. */
+/* What the renderers' command lines share (gl_shafts, lmm_tracer): the
+ * scene, their outputs, --stats, --width/--height, --exposure, -q and -p.
+ * The sh_cli_render is the values sh_cli_parse fills, and
+ * SH_CLI_RENDER_OPTIONS stands first in the tool's option table. */
 typedef struct sh_cli_render {
+  const char *scene; /* the operand: the scene file */
   sh_cli_list outputs;
   const char *stats;
   long width, height;
@@ -160,31 +161,31 @@ typedef struct sh_cli_render {
   int quiet, parents;
 } sh_cli_render;
 
-#define SH_CLI__R(type, m, f) offsetof(type, m) + offsetof(sh_cli_render, f)
-#define SH_CLI_RENDER_OPTIONS(type, m)                                        \
-  {"output", 'o', SH_CLI_LIST, "FILE", 0, SH_CLI__R(type, m, outputs), 0, 0,  \
+#define SH_CLI__R(f) offsetof(sh_cli_render, f)
+#define SH_CLI_RENDER_OPTIONS                                        \
+  {"output", 'o', SH_CLI_LIST, "FILE", 0, SH_CLI__R(outputs), 0, 0,  \
    0, 0, NULL, NULL, NULL, NULL,                                              \
    "output image: .exr (linear 32-bit float radiance, with the tool, "        \
    "version, mode, settings and scene in its header) or .png (sRGB of "      \
    "radiance * 2^exposure, clamped); repeat to write several formats from "  \
    "one render"},                                                             \
-  {"parents", 'p', SH_CLI_FLAG, NULL, 0, SH_CLI__R(type, m, parents), 0, 0,   \
+  {"parents", 'p', SH_CLI_FLAG, NULL, 0, SH_CLI__R(parents), 0, 0,   \
    0, 1, NULL, NULL, NULL, NULL,                                              \
    "make the outputs' directories (and their parents) if missing; without "  \
    "it a missing directory is an error before rendering"},                    \
-  {"width", 0, SH_CLI_INT, "W", 1, SH_CLI__R(type, m, width), 1, 65536, 0, 0, \
+  {"width", 0, SH_CLI_INT, "W", 1, SH_CLI__R(width), 1, 65536, 0, 0, \
    NULL, NULL, NULL, NULL,                                                    \
    "image width in pixels instead of the scene's (the height follows the "   \
    "scene's aspect unless given)"},                                           \
-  {"height", 0, SH_CLI_INT, "H", 1, SH_CLI__R(type, m, height), 1, 65536, 0,  \
+  {"height", 0, SH_CLI_INT, "H", 1, SH_CLI__R(height), 1, 65536, 0,  \
    0, NULL, NULL, NULL, NULL, "image height in pixels instead of the scene's"}, \
-  {"exposure", 0, SH_CLI_NUMBER, "E", 1, SH_CLI__R(type, m, exposure),        \
+  {"exposure", 0, SH_CLI_NUMBER, "E", 1, SH_CLI__R(exposure),        \
    -INFINITY, INFINITY, 0, 0, NULL, NULL, NULL, NULL,                         \
    "PNG exposure in stops (default: render.exposure, else 0)"},               \
-  {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, SH_CLI__R(type, m, stats), 0, 0,  \
+  {"stats", 0, SH_CLI_TEXT, "FILE.json", 0, SH_CLI__R(stats), 0, 0,  \
    0, 0, NULL, NULL, NULL, NULL,                                              \
    "write the settings used and the statistics of the render as JSON"},       \
-  {"quiet", 'q', SH_CLI_FLAG, NULL, 0, SH_CLI__R(type, m, quiet), 0, 0, 0, 1, \
+  {"quiet", 'q', SH_CLI_FLAG, NULL, 0, SH_CLI__R(quiet), 0, 0, 0, 1, \
    NULL, NULL, NULL, NULL, "no progress bar, no messages but errors"}
 
 /* The defaults of an sh_cli_render (exposure NAN). */
@@ -200,13 +201,13 @@ int sh_cli_render_check(const char *tool, const sh_cli_render *r);
 int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
                         const char *path, sh_scene **scene);
 
-/* A renderer's start: sh_cli_parse into `values` (which holds `r`), the
- * output checks (sh_cli_render_check) and the scene loaded from the one
- * operand at the requested size (sh_cli_render_scene). Returns -1 with
+/* A renderer's start: r's defaults, sh_cli_parse into r, the output
+ * checks (sh_cli_render_check) and the scene loaded from the one operand
+ * (r->scene) at the requested size (sh_cli_render_scene). Returns -1 with
  * *scene set, or the status to exit with. */
 int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
-                        void *values, const sh_cli_render *r,
-                        sh_cli_args *parsed, sh_scene **scene);
+                        sh_cli_render *r, sh_cli_args *parsed,
+                        sh_scene **scene);
 
 /* The PNG exposure: --exposure, else the scene's. */
 double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene);

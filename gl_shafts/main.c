@@ -18,15 +18,11 @@ static const char *const TOOL = "gl_shafts";
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-typedef struct args {
-  sh_cli_render r;
-} args;
-
 #define RENDERER(name, key_, meta, text)                                      \
   {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key_, NULL, NULL, text}
 
 static sh_cli_option options[] = {
-    SH_CLI_RENDER_OPTIONS(args, r),
+    SH_CLI_RENDER_OPTIONS,
     RENDERER("planes", "planes", "N",
              "virtual planes per light (default: render.planes, else "
              STR(GS_DEFAULT_PLANES_LOCAL) " for point and spot lights, "
@@ -120,7 +116,7 @@ static sh_stats *stats_record(const char *scene_path, const char *settings,
 }
 
 /* Writes the images and the statistics; returns the exit status. */
-static int finish(const args *a, const char *scene_path, const sh_scene *scene,
+static int finish(const sh_cli_render *r, const sh_scene *scene,
                   const gs_options *o, const sh_image *img,
                   const gs_stats *st) {
   sh_error err;
@@ -129,11 +125,11 @@ static int finish(const args *a, const char *scene_path, const sh_scene *scene,
   char *settings_text = sh_stats_text(settings);
   sh_stats_free(settings);
   sh_status status = sh_cli_write_images(
-      TOOL, &a->r.outputs, img, sh_cli_render_exposure(&a->r, scene),
-      "plane-sweep", settings_text, scene_path, &err);
-  if (status == SH_OK && a->r.stats) {
-    sh_stats *s = stats_record(scene_path, settings_text, st);
-    status = sh_stats_write(s, a->r.stats, &err);
+      TOOL, &r->outputs, img, sh_cli_render_exposure(r, scene),
+      "plane-sweep", settings_text, r->scene, &err);
+  if (status == SH_OK && r->stats) {
+    sh_stats *s = stats_record(r->scene, settings_text, st);
+    status = sh_stats_write(s, r->stats, &err);
     sh_stats_free(s);
   }
   free(settings_text);
@@ -141,7 +137,7 @@ static int finish(const args *a, const char *scene_path, const sh_scene *scene,
   char detail[96];
   snprintf(detail, sizeof detail, ": %.3f s a frame + %.3f s setup",
            st->seconds, st->setup_seconds);
-  sh_cli_render_done(TOOL, &a->r, img->width, img->height,
+  sh_cli_render_done(TOOL, r, img->width, img->height,
                      st->seconds + st->setup_seconds, detail);
   return SH_EXIT_OK;
 }
@@ -164,20 +160,18 @@ int main(int argc, char **argv) {
       "has the details.",
       options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
       set_option, &scratch, gs_option_choices};
-  args a;
-  sh_cli_render_init(&a.r);
+  sh_cli_render r;
   sh_cli_args parsed;
-  sh_scene *scene = NULL;
-  int rc = sh_cli_render_start(&tool, argc, argv, &a, &a.r, &parsed, &scene);
+  sh_scene *scene;
+  int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
-  const char *scene_path = parsed.operands[0];
   sh_error err;
   gs_options opt = gs_options_defaults(scene);
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {
     sh_scene_free(scene);
     return sh_cli_report(TOOL, &err);
   }
-  if (!a.r.quiet)
+  if (!r.quiet)
     for (int i = 0; i < scene->nmaterials; i++) {
       const sh_material *m = &scene->materials[i];
       if (!sh_is_black(m->reflect) || !sh_is_black(m->transmit))
@@ -191,7 +185,7 @@ int main(int argc, char **argv) {
   if (gs_render(scene, &opt, &img, &st, &err) != SH_OK)
     rc = sh_cli_report(TOOL, &err);
   else
-    rc = finish(&a, scene_path, scene, &opt, &img, &st);
+    rc = finish(&r, scene, &opt, &img, &st);
   sh_image_free(&img);
   sh_scene_free(scene);
   return rc;

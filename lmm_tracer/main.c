@@ -17,15 +17,11 @@
 
 static const char *const TOOL = "lmm_tracer";
 
-typedef struct args {
-  sh_cli_render r;
-} args;
-
 #define RENDERER(name, key, meta, text)                                       \
   {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key, NULL, NULL, text}
 
 static const sh_cli_option options[] = {
-    SH_CLI_RENDER_OPTIONS(args, r),
+    SH_CLI_RENDER_OPTIONS,
     RENDERER("mode", "mode", NULL,
              "reference (default): the converged reference renderer; "
              "whitted: the same tracer as the RRTA baseline; lmm: the light "
@@ -97,23 +93,23 @@ static const char *mode_name(lmm_mode mode) {
 
 /* The images (with their provenance) and the --stats record: lmm_render's
  * statistics with the tool and scene. */
-static sh_status write_outputs(const args *a, const char *scene_path,
+static sh_status write_outputs(const sh_cli_render *r,
                                const sh_image *img, double exposure,
                                const lmm_render_stats *st, sh_error *err) {
   char *settings = settings_json(st);
-  sh_status status = sh_cli_write_images(TOOL, &a->r.outputs, img, exposure,
+  sh_status status = sh_cli_write_images(TOOL, &r->outputs, img, exposure,
                                          mode_name(st->mode), settings,
-                                         scene_path, err);
+                                         r->scene, err);
   free(settings);
-  if (status != SH_OK || !a->r.stats) return status;
+  if (status != SH_OK || !r->stats) return status;
   size_t n = lmm_render_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   lmm_render_stats_json(st, text, n + 1);
   sh_stats *s = sh_stats_from_json(text);
   sh_stats_str(s, "tool", TOOL);
-  sh_stats_str(s, "scene", scene_path);
-  status = sh_stats_write(s, a->r.stats, err);
+  sh_stats_str(s, "scene", r->scene);
+  status = sh_stats_write(s, r->stats, err);
   sh_stats_free(s);
   free(text);
   return status;
@@ -147,13 +143,11 @@ int main(int argc, char **argv) {
       "light meshes\nmethod (docs/lmm.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
       set_option, &scratch, lmm_render_option_choices};
-  args a;
-  sh_cli_render_init(&a.r);
+  sh_cli_render r;
   sh_cli_args parsed;
-  sh_scene *scene = NULL;
-  int rc = sh_cli_render_start(&tool, argc, argv, &a, &a.r, &parsed, &scene);
+  sh_scene *scene;
+  int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
-  const char *scene_path = parsed.operands[0];
   sh_error err;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
     fprintf(stderr, "%s: %s\n", TOOL, err.message);
@@ -161,11 +155,11 @@ int main(int argc, char **argv) {
     return SH_EXIT_BAD_INPUT;
   }
   sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
-  double exposure = sh_cli_render_exposure(&a.r, scene);
+  double exposure = sh_cli_render_exposure(&r, scene);
 
   sh_progress bar;
   sh_progress_init(&bar, opt.mode == LMM_MODE_REFERENCE ? "reference" : "render",
-                   !a.r.quiet);
+                   !r.quiet);
   opt.progress = sh_progress_update;
   opt.progress_user = &bar;
   sh_image img = {0};
@@ -175,13 +169,13 @@ int main(int argc, char **argv) {
   if (status == SH_OK) status = lmm_render(scene, &opt, img.rgb, &st, &err);
   sh_progress_finish(&bar);
   if (status == SH_OK)
-    status = write_outputs(&a, scene_path, &img, exposure, &st, &err);
+    status = write_outputs(&r, &img, exposure, &st, &err);
   rc = SH_EXIT_OK;
   if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else {
-    if (!a.r.quiet) warn_noise(&st);
-    sh_cli_render_done(TOOL, &a.r, img.width, img.height, st.seconds, NULL);
+    if (!r.quiet) warn_noise(&st);
+    sh_cli_render_done(TOOL, &r, img.width, img.height, st.seconds, NULL);
   }
   sh_image_free(&img);
   sh_scene_free(scene);
