@@ -13,7 +13,8 @@
 #include "sh_cli.h"
 #include "sh_parse.h"
 
-static const char *const TOOL = "gl_shafts";
+#define TOOL_NAME "gl_shafts"
+static const char *const TOOL = TOOL_NAME;
 
 #define STR_(x) #x
 #define STR(x) STR_(x)
@@ -65,6 +66,17 @@ static sh_status set_option(void *target, const char *key, const char *value,
                             sh_error *err) {
   return gs_options_set(target, key, value, err);
 }
+
+static gs_options scratch; /* what options are checked on while parsing */
+static const sh_cli_tool tool = {
+    TOOL_NAME, "SCENE.json -o OUT.exr|OUT.png [options]",
+    "Renders a scene (docs/scene-format.md) with shafts of light by the "
+    "plane-sweep\nmethod of Dobashi, Yamamoto and Nishita (2000) on OpenGL "
+    "4.5, through EGL (a\nGPU if there is one, else llvmpipe on the CPU) or "
+    "OSMesa. Options override the\nscene's render keys; docs/gl_shafts.md "
+    "has the details.",
+    options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
+    set_option, &scratch, gs_option_choices};
 
 /* The settings a render used: the --stats record's first keys and the
  * EXR header's shafts:settings. Every value is a number or a name. */
@@ -150,16 +162,7 @@ int main(int argc, char **argv) {
    * without render keys), and applied once the scene is loaded. */
   sh_scene no_keys;
   memset(&no_keys, 0, sizeof no_keys);
-  gs_options scratch = gs_options_defaults(&no_keys);
-  const sh_cli_tool tool = {
-      TOOL, "SCENE.json -o OUT.exr|OUT.png [options]",
-      "Renders a scene (docs/scene-format.md) with shafts of light by the "
-      "plane-sweep\nmethod of Dobashi, Yamamoto and Nishita (2000) on OpenGL "
-      "4.5, through EGL (a\nGPU if there is one, else llvmpipe on the CPU) or "
-      "OSMesa. Options override the\nscene's render keys; docs/gl_shafts.md "
-      "has the details.",
-      options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
-      set_option, &scratch, gs_option_choices};
+  scratch = gs_options_defaults(&no_keys);
   sh_cli_render r;
   sh_cli_args parsed;
   sh_scene *scene;

@@ -15,10 +15,19 @@
 #include "sh_parse.h"
 #include "sh_progress.h"
 
-static const char *const TOOL = "lmm_tracer";
+#define TOOL_NAME "lmm_tracer"
+static const char *const TOOL = TOOL_NAME;
 
 #define RENDERER(name, key, meta, text)                                       \
   {name, 0, SH_CLI_SETTER, meta, 0, 0, 0, 0, 0, 0, NULL, key, NULL, NULL, text}
+
+/* The renderer's options go to lmm_render_options_set by name, checked
+ * while parsing on a scratch set. */
+static lmm_render_options scratch;
+static sh_status set_option(void *target, const char *key, const char *value,
+                            sh_error *err) {
+  return lmm_render_options_set(target, key, value, err);
+}
 
 static const sh_cli_option options[] = {
     SH_CLI_RENDER_OPTIONS,
@@ -60,10 +69,13 @@ static const sh_cli_option options[] = {
              "worker threads (default: one per CPU)"),
 };
 
-static sh_status set_option(void *target, const char *key, const char *value,
-                            sh_error *err) {
-  return lmm_render_options_set(target, key, value, err);
-}
+static const sh_cli_tool tool = {
+    TOOL_NAME, "SCENE.json -o OUT.exr|OUT.png [options]",
+    "Renders a scene (docs/scene-format.md) by Whitted ray tracing with "
+    "single\nscattering in the medium; lmm mode softens shadows by the "
+    "light meshes\nmethod (docs/lmm.md).",
+    options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
+    set_option, &scratch, lmm_render_option_choices};
 
 /* The settings a render used (the EXR header's shafts:settings). */
 static char *settings_json(const lmm_render_stats *st) {
@@ -133,22 +145,15 @@ static void warn_noise(const lmm_render_stats *st) {
 }
 
 int main(int argc, char **argv) {
-  lmm_render_options opt, scratch;
+  sh_error err;
+  lmm_render_options opt;
   lmm_render_options_init(&opt);
   lmm_render_options_init(&scratch);
-  const sh_cli_tool tool = {
-      TOOL, "SCENE.json -o OUT.exr|OUT.png [options]",
-      "Renders a scene (docs/scene-format.md) by Whitted ray tracing with "
-      "single\nscattering in the medium; lmm mode softens shadows by the "
-      "light meshes\nmethod (docs/lmm.md).",
-      options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
-      set_option, &scratch, lmm_render_option_choices};
   sh_cli_render r;
   sh_cli_args parsed;
   sh_scene *scene;
   int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
-  sh_error err;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
     fprintf(stderr, "%s: %s\n", TOOL, err.message);
     sh_scene_free(scene);
