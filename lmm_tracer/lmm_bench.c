@@ -79,7 +79,7 @@ static run render(const sh_scene *s, const sh_rt *rt, int method, double a,
   lmm *L = NULL;
   lmm_area *A = NULL;
   if (method == 1) {
-    lmm_options lo = {a, b, LMM_SCHEME_REFRACT_TRACE, 0, 0, 1, 0, NULL};
+    lmm_options lo = {a, b, LMM_SCHEME_REFRACT_TRACE, 0, 0, 1, 0, NULL, NULL, NULL};
     lmm_create(s, rt, &lo, opt.threads, &L, NULL);
     opt.hook = lmm_hook(L);
   } else if (method == 2) {
@@ -256,7 +256,7 @@ static void ceiling(int size) {
     opt.max_depth = 0;
     lmm *L = NULL;
     if (method) {
-      lmm_options lo = {0.04, 2.0, LMM_SCHEME_REFRACT_TRACE, 0, 0, 1, 0, NULL};
+      lmm_options lo = {0.04, 2.0, LMM_SCHEME_REFRACT_TRACE, 0, 0, 1, 0, NULL, NULL, NULL};
       lmm_create(s, rt, &lo, 1, &L, NULL);
       opt.hook = lmm_hook(L);
     }
@@ -304,7 +304,7 @@ static void volume(const char *path, int quick) {
     opt.hook = NULL;
     if (v > 0) {
       lmm_options lo = {lmm_default_step(s), 2.0, LMM_SCHEME_REFRACT_TRACE, 0,
-                        0, v == 2, 0, NULL};
+                        0, v == 2, 0, NULL, NULL, NULL};
       lmm_create(s, rt, &lo, opt.threads, &L, NULL);
       opt.hook = lmm_hook(L);
     }

@@ -167,11 +167,24 @@ static int trace(tracer *tr, sh_vec3 o, sh_vec3 d) {
 /* Checked every this many rays. */
 enum { CANCEL_EVERY = 4096 };
 
+/* Every CANCEL_EVERY rays: 0 to stop (cancelled), after reporting the
+ * progress. */
+static int go_on(const lmm_caustics_control *ctl, int64_t done, int64_t total) {
+  if (!ctl) return 1;
+  if (ctl->progress) ctl->progress(ctl->progress_user, (long)done, (long)total);
+  return !(ctl->cancel && *ctl->cancel);
+}
+
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
                              const lmm_grid *grid, int64_t rays,
-                             volatile int *cancel, lmm_caustics **out,
-                             sh_error *err) {
+                             const lmm_caustics_control *ctl,
+                             lmm_caustics **out, sh_error *err) {
   *out = NULL;
+  int64_t pairs = 0, done = 0; /* lights x semitransparent shapes */
+  for (int s = 0; s < scene->nshapes; s++)
+    if (!sh_is_black(scene->materials[scene->shapes[s].material].transmit))
+      pairs += scene->nlights;
+  const int64_t total = pairs * rays;
   lmm_caustics *c = calloc(1, sizeof *c);
   if (!c) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   c->nlights = scene->nlights > 0 ? scene->nlights : 1;
@@ -197,6 +210,8 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
     for (int s = 0; s < scene->nshapes; s++) {
       const sh_shape *shape = &scene->shapes[s];
       if (sh_is_black(scene->materials[shape->material].transmit)) continue;
+      const int64_t base = done; /* rays of the pairs before this one */
+      done += rays;
       sh_vec3 lo, hi;
       if (!sh_shape_bounds(shape, &lo, &hi)) continue;
       sh_vec3 ctr = sh_scale(sh_add(lo, hi), 0.5);
@@ -209,7 +224,8 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
         sh_basis(dir, &t, &b);
         tr.norm = SH_PI * R * R / ((double)rays * disc);
         for (int64_t r = 0; r < rays; r++) {
-          if (cancel && r % CANCEL_EVERY == 0 && *cancel) goto cancelled;
+          if (r % CANCEL_EVERY == 0 && !go_on(ctl, base + r, total))
+            goto cancelled;
           double u = sh_rng_next(&rng), v = sh_rng_next(&rng);
           double rad = R * sqrt(u), phi = 2 * SH_PI * v;
           sh_vec3 o = sh_madd(sh_madd(sh_madd(ctr, t, rad * cos(phi)), b,
@@ -229,7 +245,8 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
         double omega = 2 * SH_PI * (1.0 - cos_max);
         tr.norm = omega / ((double)rays * disc);
         for (int64_t r = 0; r < rays; r++) {
-          if (cancel && r % CANCEL_EVERY == 0 && *cancel) goto cancelled;
+          if (r % CANCEL_EVERY == 0 && !go_on(ctl, base + r, total))
+            goto cancelled;
           double ct = 1.0 - sh_rng_next(&rng) * (1.0 - cos_max);
           double st = sqrt(fmax(0.0, 1.0 - ct * ct)), phi = 2 * SH_PI * sh_rng_next(&rng);
           sh_vec3 dir = sh_madd(sh_madd(sh_scale(axis, ct), t, st * cos(phi)),
@@ -239,6 +256,7 @@ sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
       }
     }
   }
+  go_on(ctl, total, total);
   *out = c;
   return SH_OK;
 nomem:

@@ -23,14 +23,24 @@
 
 typedef struct lmm_caustics lmm_caustics;
 
+/* How a caller follows and stops the pass (every field optional). When
+ * *cancel becomes non-zero the pass stops within a few thousand rays:
+ * SH_ERR_CANCELLED, nothing allocated. progress(progress_user, done,
+ * total) reports the rays traced every few thousand, from the calling
+ * thread. */
+typedef struct lmm_caustics_control {
+  volatile int *cancel;
+  void (*progress)(void *user, long done, long total);
+  void *progress_user;
+} lmm_caustics_control;
+
 /* Traces `rays` rays per light and semitransparent shape and credits the
- * points of `grid` (copied). Caller frees with lmm_caustics_free. When
- * *cancel (optional) becomes non-zero the pass stops within a few thousand
- * rays: SH_ERR_CANCELLED, nothing allocated. */
+ * points of `grid` (copied). Caller frees with lmm_caustics_free. `ctl`
+ * may be NULL. */
 sh_status lmm_caustics_build(const sh_scene *scene, const sh_rt *rt,
                              const lmm_grid *grid, int64_t rays,
-                             volatile int *cancel, lmm_caustics **out,
-                             sh_error *err);
+                             const lmm_caustics_control *ctl,
+                             lmm_caustics **out, sh_error *err);
 void lmm_caustics_free(lmm_caustics *c);
 
 /* The refracted visibility of light `light` at grid point (i, j, k). */

@@ -235,8 +235,9 @@ sh_status lmm_create(const sh_scene *scene, const sh_rt *rt,
   }
   if (opt->scheme == LMM_SCHEME_REFRACT_BOTH && L->semi) {
     double t0 = sh_seconds();
+    lmm_caustics_control ctl = {opt->cancel, opt->progress, opt->progress_user};
     st = lmm_caustics_build(scene, rt, lmm_mesh_grid(L->mesh), opt->caustic_rays,
-                            opt->cancel, &L->caustics, err);
+                            &ctl, &L->caustics, err);
     if (st != SH_OK) {
       lmm_free(L);
       return st;

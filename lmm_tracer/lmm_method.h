@@ -45,8 +45,11 @@ typedef struct lmm_options {
   /* refract-both: the refined variant of section 5, which replaces
    * xi(i, P) v(i, x) by V(i, x) xi(i, P) + alpha xi(P_j, P). */
   int refined;
-  /* Optional: stops the refract-both pass early (SH_ERR_CANCELLED). */
+  /* Optional: stops the refract-both pass early (SH_ERR_CANCELLED), and
+   * reports its rays (done, total) from the calling thread. */
   volatile int *cancel;
+  void (*progress)(void *user, long done, long total);
+  void *progress_user;
 } lmm_options;
 
 typedef struct lmm_stats {

@@ -155,6 +155,8 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
     lo.volume = !opt->volume_exact;
     lo.refined = opt->refined;
     lo.cancel = opt->cancel;
+    lo.progress = opt->progress; /* the refracted paths' pass */
+    lo.progress_user = opt->progress_user;
     st = lmm_create(scene, rt, &lo, ro.threads, &method, err);
     if (st == SH_OK) ro.hook = lmm_hook(method);
   } else if (st == SH_OK && opt->mode == LMM_MODE_WHITTED &&

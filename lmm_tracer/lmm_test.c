@@ -33,7 +33,7 @@ static void render(const sh_scene *s, const sh_rt *rt, double h, double kl,
   opt.refract = scheme != LMM_SCHEME_STRAIGHT;
   lmm *method = NULL;
   if (h > 0) {
-    lmm_options lo = {h, kl, scheme, 200000, 0, 1, 0, NULL};
+    lmm_options lo = {h, kl, scheme, 200000, 0, 1, 0, NULL, NULL, NULL};
     SH_CHECK(lmm_create(s, rt, &lo, opt.threads, &method, NULL) == SH_OK);
     opt.hook = lmm_hook(method);
   }
@@ -237,7 +237,7 @@ static void semitransparent(void) {
 
   /* refract-both: the mesh values straight below the sphere, against the
    * crossings of paraxial and marginal rays. */
-  lmm_options lo = {0.05, 2.0, LMM_SCHEME_REFRACT_BOTH, 200000, 0, 1, 0, NULL};
+  lmm_options lo = {0.05, 2.0, LMM_SCHEME_REFRACT_BOTH, 200000, 0, 1, 0, NULL, NULL, NULL};
   double paraxial = 1.5 / (2.0 * 0.5); /* n R / (2 (n - 1)) from the centre */
   double marginal = axis_crossing(0.7, 1.5);
   fprintf(stderr, "focus expected between %.3f and %.3f below the centre "
@@ -253,7 +253,8 @@ static void semitransparent(void) {
   const lmm_grid *grid = lmm_mesh_grid(mesh);
   volatile int stop = 1;
   lmm_caustics *none = (lmm_caustics *)1;
-  SH_CHECK(lmm_caustics_build(s, rt, grid, lo.caustic_rays, &stop, &none,
+  lmm_caustics_control halt = {&stop, NULL, NULL};
+  SH_CHECK(lmm_caustics_build(s, rt, grid, lo.caustic_rays, &halt, &none,
                               NULL) == SH_ERR_CANCELLED &&
            none == NULL);
   SH_CHECK(lmm_caustics_build(s, rt, grid, lo.caustic_rays, NULL, &caustics,
@@ -285,7 +286,7 @@ static void semitransparent(void) {
     sh_reference_options opt = sh_reference_defaults(s);
     opt.rt = rt;
     lmm *method = NULL;
-    lmm_options ro = {0.1, 2.0, LMM_SCHEME_REFRACT_BOTH, 50000, 0, 1, v, NULL};
+    lmm_options ro = {0.1, 2.0, LMM_SCHEME_REFRACT_BOTH, 50000, 0, 1, v, NULL, NULL, NULL};
     SH_CHECK(lmm_create(s, rt, &ro, 2, &method, NULL) == SH_OK);
     opt.threads = 2;
     opt.hook = lmm_hook(method);
