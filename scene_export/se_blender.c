@@ -9,6 +9,7 @@
 #include "se_geom.h"
 #include "se_jsontext.h"
 #include "se_cycles_phase.h"
+#include "se_frame.h"
 #include "se_text.h"
 #include "sh_camera.h"
 #include "sh_tessellate.h"
@@ -26,8 +27,12 @@ typedef struct blend {
   se_output *out;
 } blend;
 
-/* Scene space (Y up) to Blender's (Z up): a rotation about X. */
-static sh_vec3 to_blender(sh_vec3 v) { return sh_v3(v.x, -v.z, v.y); }
+/* Scene space (Y up) to Blender's (Z up), metres = scene units
+ * (se_frame.h). */
+static sh_vec3 to_blender(sh_vec3 v) {
+  const se_frame f = se_frame_blender();
+  return se_frame_point(&f, v);
+}
 
 static json_t *vec(sh_vec3 v) { return json_pack("[fff]", v.x, v.y, v.z); }
 /* Appends the three coordinates of scene point p, in Blender's space. */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "se_geom.h"
+#include "se_frame.h"
 #include "se_pov_terms.h"
 #include "se_text.h"
 #include "sh_tessellate.h"
@@ -17,6 +18,7 @@ typedef struct pov {
   se_notes *notes;
   se_buf *b;
   double scale;     /* POV-Ray units per scene unit */
+  se_frame frame;   /* the coordinate and unit mapping (se_frame.h) */
   double pov_radius; /* the bounding sphere's radius in POV-Ray units */
   sh_vec3 center;   /* the bounding sphere, in scene units */
   double radius;
@@ -27,47 +29,34 @@ typedef struct pov {
 /* Numbers: 10 significant digits, enough for half-float output. */
 static void num(se_buf *b, double v) { se_buf_printf(b, "%.10g", v == 0 ? 0.0 : v); }
 
-/* A scene-space point as a POV-Ray vector: scaled, z negated. */
-static void point(pov *p, sh_vec3 v) {
-  se_buf_puts(p->b, "<");
-  num(p->b, v.x * p->scale);
-  se_buf_puts(p->b, ", ");
-  num(p->b, v.y * p->scale);
-  se_buf_puts(p->b, ", ");
-  num(p->b, -v.z * p->scale);
-  se_buf_puts(p->b, ">");
-}
-
-/* A direction: z negated, not scaled. */
-static void direction(pov *p, sh_vec3 v) {
-  se_buf_puts(p->b, "<");
-  num(p->b, v.x);
-  se_buf_puts(p->b, ", ");
-  num(p->b, v.y);
-  se_buf_puts(p->b, ", ");
-  num(p->b, -v.z);
-  se_buf_puts(p->b, ">");
-}
-
-static void colour(se_buf *b, sh_vec3 c) {
-  se_buf_puts(b, "rgb <");
-  num(b, c.x);
+/* "<x, y, z>" after `prefix`. */
+static void vector(se_buf *b, const char *prefix, sh_vec3 v) {
+  se_buf_printf(b, "%s<", prefix);
+  num(b, v.x);
   se_buf_puts(b, ", ");
-  num(b, c.y);
+  num(b, v.y);
   se_buf_puts(b, ", ");
-  num(b, c.z);
+  num(b, v.z);
   se_buf_puts(b, ">");
 }
+
+/* A scene-space point and direction in POV-Ray's frame (se_frame.h). */
+static void point(pov *p, sh_vec3 v) {
+  vector(p->b, "", se_frame_point(&p->frame, v));
+}
+static void direction(pov *p, sh_vec3 v) {
+  vector(p->b, "", se_frame_dir(&p->frame, v));
+}
+static void colour(se_buf *b, sh_vec3 c) { vector(b, "rgb ", c); }
 
 /* POV-Ray's `matrix` for object-to-world m followed by the scale and the
  * z flip: its rows are the images of x, y, z and the translation, as POV-Ray
  * applies matrices to row vectors. */
 static void matrix(pov *p, const sh_mat4 *m) {
-  double f[3] = {p->scale, p->scale, -p->scale};
   se_buf_puts(p->b, "matrix <");
   for (int col = 0; col < 4; col++)
     for (int row = 0; row < 3; row++) {
-      num(p->b, f[row] * m->m[row][col]);
+      num(p->b, se_frame_matrix(&p->frame, m, row, col));
       if (col < 3 || row < 2) se_buf_puts(p->b, ", ");
     }
   se_buf_puts(p->b, ">");
@@ -424,8 +413,8 @@ static void medium(pov *p) {
   int intervals = final ? 255 : 200, samples = final ? 4 : 1;
   sh_vec3 lo, hi;
   medium_box(p, &lo, &hi);
-  sh_vec3 ss = sh_scale(m->sigma_s, 1.0 / p->scale);
-  sh_vec3 sa = sh_scale(m->sigma_a, 1.0 / p->scale);
+  sh_vec3 ss = se_frame_per_length(&p->frame, m->sigma_s);
+  sh_vec3 sa = se_frame_per_length(&p->frame, m->sigma_a);
   se_buf_puts(b, "// The medium: its box (enlarged by a hair), invisible and hollow, with\n"
                  "// interior media. Method 2 with jitter 0 and equal samples per interval is a\n"
                  "// midpoint rule with exact transmittance (method 3 is biased).\n");
@@ -500,9 +489,11 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
   p.name = name;
   se_bounding_sphere(scene, &p.center, &p.radius);
   p.scale = pow(10.0, round(log10(300.0 / p.radius)));
-  p.pov_radius = p.radius * p.scale;
-  p.sigma_t = scene->medium.present ? sh_scale(scene->medium.sigma_t, 1.0 / p.scale)
-                                    : sh_v3s(0.0);
+  p.frame = se_frame_pov(p.scale);
+  p.pov_radius = se_frame_length(&p.frame, p.radius);
+  p.sigma_t = scene->medium.present
+                  ? se_frame_per_length(&p.frame, scene->medium.sigma_t)
+                  : sh_v3s(0.0);
 
   /* The body first, so that the header can list every approximation. */
   se_buf body = {0};

@@ -1,0 +1,48 @@
+/* The coordinate and unit mapping of every target, in one place.
+ *
+ * The scene is right-handed with Y up, in scene units. A target's frame
+ * names, for each of its axes, the scene axis it is and its sign, and how
+ * many of its length units make one scene unit:
+ * - POV-Ray: left-handed, Y up: (x, y, z) -> (x, y, -z), a mirror that
+ *   POV-Ray's own left-handedness undoes; lengths times a power of ten
+ *   that puts the scene's bounding sphere near 300 units (se_pov.c), so
+ *   POV-Ray's fixed epsilons stay negligible; coefficients per unit length
+ *   (sigma_s, sigma_a) divided by it.
+ * - Blender: right-handed, Z up: (x, y, z) -> (x, -z, y), a rotation about
+ *   X, so nothing is mirrored; one scene unit is one metre.
+ * - the normalised scene (--to json): the identity.
+ * Exporters map points, directions, lengths, coefficients and matrices
+ * through their frame only. */
+#ifndef SE_FRAME_H
+#define SE_FRAME_H
+
+#include "sh_math.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct se_frame {
+  int axis[3];     /* target axis i is scene axis axis[i] ... */
+  double sign[3];  /* ... times sign[i] */
+  double scale;    /* target length units per scene unit */
+} se_frame;
+
+se_frame se_frame_pov(double scale);
+se_frame se_frame_blender(void);
+
+/* A point: axes mapped, scaled. */
+sh_vec3 se_frame_point(const se_frame *f, sh_vec3 p);
+/* A direction (or a vector that is not a length): axes mapped only. */
+sh_vec3 se_frame_dir(const se_frame *f, sh_vec3 d);
+/* A length, and a coefficient per unit length (sigma). */
+double se_frame_length(const se_frame *f, double length);
+sh_vec3 se_frame_per_length(const se_frame *f, sh_vec3 coefficient);
+/* Entry (row, col) of object-to-world matrix m in the target: its row
+ * `row` of the mapped, scaled transform (col 3 is the translation). */
+double se_frame_matrix(const se_frame *f, const sh_mat4 *m, int row, int col);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
