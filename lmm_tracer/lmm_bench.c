@@ -15,6 +15,7 @@
 #include "lmm_area.h"
 #include "lmm_method.h"
 #include "sh_camera.h"
+#include "sh_cli.h"
 #include "sh_compare.h"
 #include "sh_parse.h"
 #include "sh_time.h"
@@ -324,8 +325,26 @@ static void volume(const char *path, int quick) {
   sh_scene_free(s);
 }
 
+static const sh_cli_option options[] = {
+    {"quick", 0, SH_CLI_FLAG, NULL, 0, 0, 0, 0, 0, 1, NULL, NULL, NULL, NULL,
+     "smaller images and sample counts: the tables quickly, not the "
+     "published figures"},
+};
+
+static const sh_cli_tool tool = {
+    "lmm_bench", "[options]",
+    "Benchmarks the light meshes method: LMM against RRTA as lights and image "
+    "size grow,\nsoft shadows against area-light sampling, rays per second "
+    "against Embree's\nceiling, volumetric shadows from the mesh (run by "
+    "lmm_tracer/bench.sh).",
+    options, (int)(sizeof options / sizeof *options), 0, 0, NULL, NULL, NULL,
+    NULL, NULL};
+
 int main(int argc, char **argv) {
-  int quick = argc > 1 && !strcmp(argv[1], "--quick");
+  int quick = 0;
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &quick, &parsed);
+  if (rc >= 0) return rc;
   int sizes_full[] = {512, 1024}, sizes_quick[] = {128};
   printf("# lmm_bench%s\n\n", quick ? " (quick)" : "");
   if (quick)
