@@ -4,11 +4,12 @@
 # run them, `gl_shafts --help`, `lmm_tracer --help` and the teapot
 # spotlight (scenes/teapot_spot.json at its own size) to a PNG and to an
 # EXR, each after one warm-up run (so the "second run": files in the page
-# cache, Mesa's shader cache filled). Prints a Markdown table: the
+# cache, the program caches filled). Prints a Markdown table: the
 # median wall time and CPU time (user + system) of the runs, the peak
 # memory, and the shared libraries the program is linked to (ldd, before
 # anything it loads later with dlopen); then where one PNG run's time goes
-# (gl_shafts --stats).
+# (gl_shafts --stats); then the teapot's second run with gl_shafts' program
+# cache on disk and Mesa's shader cache each on or off (fresh directories).
 #
 # With --baseline-rev REV (a commit, e.g. the one before the change) the
 # same commands run, interleaved run by run, on a build of that commit too
@@ -29,7 +30,7 @@ while [ $# -gt 0 ]; do
     --runs) runs=$2; shift 2 ;;
     --baseline-rev) base_rev=$2; shift 2 ;;
     --baseline) base=$2; shift 2 ;;
-    -h|--help) sed -n '2,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     *) echo "cli_bench.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -55,6 +56,9 @@ trap 'rm -rf "$work"' EXIT
 cd "$root"
 echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
      "$(date -u +%Y-%m-%dT%H:%MZ), $runs runs a command"
+# Both builds' caches of compiled programs (Mesa's, gl_shafts') start empty
+# in the work directory; the warm-up runs fill them.
+export MESA_SHADER_CACHE_DIR=$work/mesa SHAFTS_PROGRAM_CACHE=$work/programs
 python3 - "$build" "$base" "$runs" "$work" <<'EOF'
 import os, resource, statistics, subprocess, sys, time, json
 
@@ -134,4 +138,48 @@ for tag, b in builds:
         comp.append(st.get("programs_compiled", 0))
     w, s, f = (statistics.median(v) for v in (walls, sets, frames))
     print("| %s | %.0f | %.0f | %d | %.0f | %.0f |" % (tag, w, s, max(comp), f, w - s - f))
+# The two caches of compiled programs on the second run, gl_shafts' own on
+# disk (ARB_get_program_binary, gs_program_cache.h) and Mesa's shader cache
+# (which also keeps llvmpipe's machine code), each on or off, each in a
+# directory of its own filled by a warm-up run; configurations interleaved.
+print()
+print("| program caches (teapot -o out.png, second run) | wall ms | CPU ms "
+      "| frame ms (programs and drawing) | programs on disk |")
+print("|---|---:|---:|---:|---:|")
+exe = os.path.join(build, "gl_shafts/gl_shafts")
+configs = [("both (the default)", {}),
+           ("Mesa's only", {"SHAFTS_PROGRAM_CACHE": "off"}),
+           ("gl_shafts' only", {"MESA_SHADER_CACHE_DISABLE": "true"}),
+           ("neither", {"SHAFTS_PROGRAM_CACHE": "off", "MESA_SHADER_CACHE_DISABLE": "true"})]
+envs = []
+for i, (name, extra) in enumerate(configs):
+    e = dict(os.environ)
+    e["MESA_SHADER_CACHE_DIR"] = os.path.join(work, "mesa%d" % i)
+    e["SHAFTS_PROGRAM_CACHE"] = os.path.join(work, "programs%d" % i)
+    e.update(extra)
+    envs.append(e)
+
+def run_env(e, tag):
+    stats = os.path.join(work, tag + ".json")
+    t0 = time.perf_counter()
+    p = subprocess.Popen([exe, scene, "-o", os.path.join(work, tag + ".png"), "-q",
+                          "--stats", stats], env=e)
+    _, status, ru = os.wait4(p.pid, 0)
+    if status != 0:
+        sys.exit("cli_bench.sh: gl_shafts failed")
+    return ((time.perf_counter() - t0) * 1e3, (ru.ru_utime + ru.ru_stime) * 1e3,
+            json.load(open(stats))["seconds"] * 1e3)
+
+for i, e in enumerate(envs):
+    run_env(e, "cfg%d" % i)
+samples = [[] for _ in configs]
+for r in range(runs):
+    order = range(len(configs)) if r % 2 == 0 else reversed(range(len(configs)))
+    for i in order:
+        samples[i].append(run_env(envs[i], "cfg%d" % i))
+for i, (name, _) in enumerate(configs):
+    d = envs[i]["SHAFTS_PROGRAM_CACHE"]
+    files = len(os.listdir(d)) if os.path.isdir(d) else 0
+    w, c, f = (statistics.median(x[k] for x in samples[i]) for k in range(3))
+    print("| %s | %.0f | %.0f | %.0f | %d |" % (name, w, c, f, files))
 EOF

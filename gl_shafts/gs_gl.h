@@ -79,6 +79,9 @@
   X(PFNGLGETPROGRAMIVPROC, GetProgramiv)                                     \
   X(PFNGLGETPROGRAMINFOLOGPROC, GetProgramInfoLog)                           \
   X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                                   \
+  X(PFNGLPROGRAMPARAMETERIPROC, ProgramParameteri)                           \
+  X(PFNGLGETPROGRAMBINARYPROC, GetProgramBinary)                             \
+  X(PFNGLPROGRAMBINARYPROC, ProgramBinary)                                   \
   X(PFNGLUSEPROGRAMPROC, UseProgram)                                         \
   X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)                         \
   X(PFNGLPROGRAMUNIFORM1IPROC, ProgramUniform1i)                             \
@@ -183,6 +186,9 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glGetProgramiv gs__gl_current->GetProgramiv
 #define glGetProgramInfoLog gs__gl_current->GetProgramInfoLog
 #define glDeleteProgram gs__gl_current->DeleteProgram
+#define glProgramParameteri gs__gl_current->ProgramParameteri
+#define glGetProgramBinary gs__gl_current->GetProgramBinary
+#define glProgramBinary gs__gl_current->ProgramBinary
 #define glUseProgram gs__gl_current->UseProgram
 #define glGetUniformLocation gs__gl_current->GetUniformLocation
 #define glProgramUniform1i gs__gl_current->ProgramUniform1i

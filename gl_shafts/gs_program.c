@@ -1,15 +1,12 @@
 #include "gs_program.h"
+#include "gs_program_cache.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The shader's source parts: the version, the defines, common.glsl and
- * the stage's file, whose `#include "NAME"` line (one at most) is replaced
- * by the embedded file NAME. Returns the number of parts, or 0 with *bad
- * set to the include line if NAME is unknown. */
-static int source_parts(const gs__glsl *src, const char *defines, const char **parts,
-                        GLint *lens, char *line_after, size_t size, const char **bad) {
+int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
+                             GLint *lens, char *line_after, size_t size, const char **bad) {
   int n = 0;
 #define ADD(s, l) (parts[n] = (s), lens[n++] = (GLint)(l))
   ADD("#version 450 core\n", -1);
@@ -50,7 +47,8 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
   const char *parts[9], *bad = NULL;
   GLint lens[9];
   char line_after[32];
-  int nparts = source_parts(src, defines, parts, lens, line_after, sizeof line_after, &bad);
+  int nparts = gs__program_source_parts(src, defines, parts, lens, line_after,
+                                        sizeof line_after, &bad);
   if (!nparts) {
     const char *eol = strchr(bad, '\n');
     return sh_error_set(err, SH_ERR_DEVICE, "the shader %s includes an unknown file: %.*s",
@@ -77,6 +75,10 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
 
 static sh_status build(const gs__glsl *vs, const gs__glsl *fs,
                        const char *defines, GLuint *out, sh_error *err) {
+  /* A binary of the same sources from the same driver, kept on disk by an
+   * earlier run (gs_program_cache.h). */
+  if ((*out = gs__program_cache_load(vs, fs, defines)))
+    return SH_OK;
   GLuint v = 0, f = 0;
   sh_status st = compile(GL_VERTEX_SHADER, vs, defines, &v, err);
   if (st == SH_OK) st = compile(GL_FRAGMENT_SHADER, fs, defines, &f, err);
@@ -87,6 +89,7 @@ static sh_status build(const gs__glsl *vs, const gs__glsl *fs,
   GLuint prog = glCreateProgram();
   glAttachShader(prog, v);
   glAttachShader(prog, f);
+  gs__program_cache_prepare(prog);
   glLinkProgram(prog);
   glDeleteShader(v);
   glDeleteShader(f);
@@ -101,7 +104,10 @@ static sh_status build(const gs__glsl *vs, const gs__glsl *fs,
                         vs->name, fs->name, defines, log);
   }
   *out = prog;
-  return gs__gl_check("building a shader program", err);
+  st = gs__gl_check("building a shader program", err);
+  if (st == SH_OK)
+    gs__program_cache_store(prog, vs, fs, defines);
+  return st;
 }
 
 sh_status gs__program_get(gs__programs *c, const gs__glsl *vs,

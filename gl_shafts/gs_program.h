@@ -36,6 +36,17 @@ sh_status gs__program_get(gs__programs *cache, const gs__glsl *vs,
                           const gs__glsl *fs, const char *defines,
                           GLuint *out, sh_error *err);
 
+/* The source parts a stage is compiled from, in glShaderSource's order
+ * (parts and lens: room for 9; lens -1 where a part is NUL-terminated):
+ * the version, the defines, common.glsl and the stage's file, whose
+ * `#include "NAME"` line (one at most) is replaced by the embedded file
+ * NAME (line_after, size bytes, holds the #line that follows it). Returns
+ * the number of parts, or 0 with *bad set to the include line if NAME is
+ * unknown. The program cache on disk keys on the same parts. */
+#define GS__SOURCE_PARTS_MAX 9
+int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
+                             GLint *lens, char *line_after, size_t size, const char **bad);
+
 /* Deletes every program; the cache is empty afterwards. */
 void gs__programs_free(gs__programs *cache);
 
