@@ -82,7 +82,10 @@ class SHAFTS_PT_tracer(ShaftsPanel, bpy.types.Panel):
               (None, None, ("spp", "viewport_spp", "viewport_divider", "max_depth", "seed",
                             "threads")),
               (None, lambda s: s.mode != 'REFERENCE', ("scheme",)),
-              (None, lambda s: s.mode == 'LMM', ("refined", "mesh_step", "radius", "volume")))
+              # Refined is a variant of refract-both: greyed out under any
+              # other scheme, where the library refuses it.
+              (None, lambda s: s.mode == 'LMM' and s.scheme == 'REFRACT_BOTH', ("refined",)),
+              (None, lambda s: s.mode == 'LMM', ("mesh_step", "radius", "volume")))
 
     def draw(self, context):
         draw_groups(self.layout, context.scene.shafts_tracer, self.GROUPS)

@@ -69,7 +69,8 @@ class ShaftsTracerSettings(bpy.types.PropertyGroup):
         default='DEFAULT')
     refined: BoolProperty(
         name="Refined", default=False,
-        description="Light meshes, refract-both: the refined variant")
+        description="Light meshes with Scheme Refract-Both: the refined variant "
+                    "(refused under any other scheme)")
     mesh_step: FloatProperty(
         name="Mesh Step", default=0.0, min=0.0, subtype='DISTANCE',
         description="Light meshes: mesh step H; 0: 1/100 of the shapes' diagonal")
