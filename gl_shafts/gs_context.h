@@ -80,6 +80,12 @@ const char *gs__context_version(const gs__context *ctx);
  * current on any other thread. */
 void gs__context_free(gs__context *ctx);
 
+/* One line per device EGL's device platform lists ("device 0: hardware,
+ * /dev/dri/card0; extensions: ..."), for gpu_check.sh. Returns the number
+ * of hardware devices (not EGL_MESA_device_software), or -1 with a line
+ * saying why there is no list (no libEGL, no device enumeration). */
+int gs__egl_devices(char *buf, size_t size);
+
 /* dlopen of the first of `names` (a NULL-terminated list) that loads, for
  * a backend; on failure NULL, with a sentence naming the libraries and
  * dlerror's reason in why. */

@@ -230,6 +230,41 @@ static int try_devices(egl_impl *e, char *why, size_t why_size) {
   return 0;
 }
 
+static pthread_once_t load_once = PTHREAD_ONCE_INIT;
+
+int gs__egl_devices(char *buf, size_t size) {
+  pthread_once(&load_once, load);
+  buf[0] = '\0';
+  if (load_error[0]) {
+    snprintf(buf, size, "no EGL: %s\n", load_error);
+    return -1;
+  }
+  const char *client = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  enum { MAX_DEVICES = 16 };
+  EGLDeviceEXT devices[MAX_DEVICES];
+  EGLint n = 0;
+  if (!has_ext(client, "EGL_EXT_platform_device") || !egl.QueryDevicesEXT ||
+      !egl.QueryDeviceStringEXT || !egl.QueryDevicesEXT(MAX_DEVICES, devices, &n)) {
+    snprintf(buf, size, "no EGL device enumeration (EGL_EXT_device_enumeration)\n");
+    return -1;
+  }
+  size_t used = 0;
+  int hardware = 0;
+  for (int i = 0; i < n && used < size; i++) {
+    const char *exts = egl.QueryDeviceStringEXT(devices[i], EGL_EXTENSIONS);
+    int software = has_ext(exts, "EGL_MESA_device_software");
+    const char *node = has_ext(exts, "EGL_EXT_device_drm")
+                           ? egl.QueryDeviceStringEXT(devices[i], EGL_DRM_DEVICE_FILE_EXT)
+                           : NULL;
+    hardware += !software;
+    int k = snprintf(buf + used, size - used, "device %d: %s%s%s; extensions: %s\n", i,
+                     software ? "software" : "hardware", node ? ", " : "",
+                     node ? node : "", exts ? exts : "(none)");
+    used += k > 0 ? (size_t)k : 0;
+  }
+  return hardware;
+}
+
 static int try_surfaceless(egl_impl *e, char *why, size_t why_size) {
   const char *client = egl.QueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   if (!has_ext(client, "EGL_MESA_platform_surfaceless") ||
@@ -243,8 +278,7 @@ static int try_surfaceless(egl_impl *e, char *why, size_t why_size) {
 }
 
 static sh_status create(void **out, sh_error *err) {
-  static pthread_once_t once = PTHREAD_ONCE_INIT;
-  pthread_once(&once, load);
+  pthread_once(&load_once, load);
   if (load_error[0]) return sh_error_set(err, SH_ERR_DEVICE, "%s", load_error);
   egl_impl *e = calloc(1, sizeof *e);
   if (!e) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");

@@ -1,0 +1,45 @@
+/* gl_shafts_gpu_probe: what gpu_check.sh reports before it renders: the
+ * devices EGL's device platform lists, then the context gl_shafts gets
+ * from a backend (default egl), as lines of "key: value":
+ *   devices: N hardware
+ *   device 0: hardware, /dev/dri/card0; extensions: ...
+ *   backend: egl
+ *   renderer: NVIDIA GeForce RTX 3060/PCIe/SSE2
+ *   vendor: NVIDIA Corporation
+ *   version: 4.6.0 NVIDIA 525.147.05
+ *   hardware: yes
+ * "hardware: no" when the renderer is one of Mesa's software rasterizers
+ * (llvmpipe, softpipe, swrast). Exit status 0 when a context was made
+ * (whatever it runs on), 1 when none could be. */
+#include <stdio.h>
+#include <string.h>
+
+#include "gs_context.h"
+
+int main(int argc, char **argv) {
+  gs_backend backend = GS_BACKEND_EGL;
+  if (argc > 1 && !strcmp(argv[1], "auto")) backend = GS_BACKEND_AUTO;
+  else if (argc > 1 && !strcmp(argv[1], "osmesa")) backend = GS_BACKEND_OSMESA;
+  else if (argc > 1 && strcmp(argv[1], "egl")) {
+    fprintf(stderr, "usage: gl_shafts_gpu_probe [egl|auto|osmesa]\n");
+    return 2;
+  }
+  static char devices[16384];
+  int hw = gs__egl_devices(devices, sizeof devices);
+  printf("devices: %d hardware\n%s", hw < 0 ? 0 : hw, devices);
+  gs__context *ctx = NULL;
+  sh_error err;
+  if (gs__context_create(backend, &ctx, &err) != SH_OK) {
+    printf("backend: none\nerror: %s\nhardware: no\n", err.message);
+    return 1;
+  }
+  const char *r = gs__context_renderer(ctx);
+  int software = strstr(r, "llvmpipe") || strstr(r, "softpipe") || strstr(r, "swrast") ||
+                 strstr(r, "Software Rasterizer");
+  printf("backend: %s\nrenderer: %s\nvendor: %s\nversion: %s\nhardware: %s\n",
+         gs__context_backend_name(ctx), r, gs__context_vendor(ctx),
+         gs__context_version(ctx), software ? "no" : "yes");
+  gs__context_release(ctx);
+  gs__context_free(ctx);
+  return 0;
+}
