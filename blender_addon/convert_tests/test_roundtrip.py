@@ -213,6 +213,9 @@ for args, what in (([], "no arguments"), ([blend], "one argument"),
             "%d %s" % (r.returncode, r.stderr.strip()))
 r = subprocess.run([tool, "--help"], capture_output=True, text=True)
 H.check("blend2shafts --help", r.returncode == 0 and "usage:" in r.stdout)
+r = subprocess.run([tool, "--version"], capture_output=True, text=True)
+H.check("blend2shafts --version", r.returncode == 0 and
+        r.stdout.startswith("blend2shafts ") and r.stdout.split()[1][:1].isdigit(), r.stdout)
 H.check("File > Import > Shafts scene",
         bpy.ops.shafts.import_scene(filepath=op_out) == {"FINISHED"})
 H.finish()
