@@ -350,13 +350,8 @@ static int child_no_plugin(void) {
 }
 
 int main(void) {
-  const char *base = getenv("TMPDIR");
-  snprintf(tmpdir, sizeof tmpdir, "%s/sh_image_codec_test.XXXXXX",
-           base && *base ? base : "/tmp");
-  if (!mkdtemp(tmpdir)) {
-    perror("mkdtemp");
+  if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_image_codec_test"))
     return EXIT_FAILURE;
-  }
   /* Before anything loads the plugin into this process. */
   SH_CHECK(in_child(child_no_oiio) == 0);
   SH_CHECK(in_child(child_no_plugin) == 0);

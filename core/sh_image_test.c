@@ -333,13 +333,7 @@ static void test_lookup(void) {
 }
 
 int main(void) {
-  const char *base = getenv("TMPDIR");
-  snprintf(tmpdir, sizeof tmpdir, "%s/sh_image_test.XXXXXX",
-           base && *base ? base : "/tmp");
-  if (!mkdtemp(tmpdir)) {
-    perror("mkdtemp");
-    return EXIT_FAILURE;
-  }
+  if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_image_test")) return EXIT_FAILURE;
   test_srgb();
   test_exr_roundtrip();
   test_png_roundtrip();

@@ -502,13 +502,7 @@ static void test_tessellate(void) {
 }
 
 int main(void) {
-  const char *base = getenv("TMPDIR");
-  snprintf(tmpdir, sizeof tmpdir, "%s/sh_mesh_test.XXXXXX",
-           base && *base ? base : "/tmp");
-  if (!mkdtemp(tmpdir)) {
-    perror("mkdtemp");
-    return EXIT_FAILURE;
-  }
+  if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_mesh_test")) return EXIT_FAILURE;
   test_load();
   test_confined();
   test_heightfield();

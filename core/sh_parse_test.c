@@ -916,11 +916,8 @@ static void remove_tmpdir(void) {
 }
 
 int main(void) {
-  snprintf(tmpdir, sizeof tmpdir, "/tmp/sh_parse_test_XXXXXX");
-  if (!mkdtemp(tmpdir)) {
-    perror("mkdtemp");
+  if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_parse_test"))
     return EXIT_FAILURE;
-  }
   write_fixtures();
   test_full_scene();
   test_defaults();

@@ -55,6 +55,19 @@ static inline int sh_test_error_is(const char *what, sh_status got,
   return ok;
 }
 
+/* Makes a fresh directory for a test's files, `$TMPDIR/<name>.XXXXXX`
+ * (/tmp without TMPDIR), and writes its path into `dir`. Returns 0 and
+ * prints why when it cannot; the caller's main then exits with failure. */
+static inline int sh_test_tmpdir(char *dir, size_t size, const char *name) {
+  const char *base = getenv("TMPDIR");
+  snprintf(dir, size, "%s/%s.XXXXXX", base && *base ? base : "/tmp", name);
+  if (!mkdtemp(dir)) {
+    perror("mkdtemp");
+    return 0;
+  }
+  return 1;
+}
+
 /* Call at the end of main. */
 #define SH_TEST_DONE()                                                      \
   do {                                                                      \

@@ -204,11 +204,8 @@ static void scenes_in(const char *dir, const char *tmp, int *count) {
 int main(void) {
   const char *src = getenv("SHAFTS_SOURCE_DIR");
   if (!src) src = "../..";
-  char tmp[] = "/tmp/se_json_testXXXXXX";
-  if (!mkdtemp(tmp)) {
-    perror("mkdtemp");
-    return EXIT_FAILURE;
-  }
+  char tmp[256];
+  if (!sh_test_tmpdir(tmp, sizeof tmp, "se_json_test")) return EXIT_FAILURE;
   char dir[PATH_MAX];
   int count = 0;
   snprintf(dir, sizeof dir, "%s/scenes", src);
