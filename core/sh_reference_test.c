@@ -11,14 +11,7 @@
 #include "shafts.h"
 
 static sh_scene *parse(const char *json) {
-  sh_error err;
-  sh_scene *s = NULL;
-  if (sh_scene_parse(json, "test.json", ".", &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "parse failed: %s\n", buf);
-  }
-  return s;
+  return sh_test_parse(json, "test.json");
 }
 
 static void lambert_plane(void) {

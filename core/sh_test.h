@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "sh_error.h"
+#include "sh_parse.h"
 
 static int sh_test_failures = 0;
 static int sh_test_checks = 0;
@@ -53,6 +54,20 @@ static inline int sh_test_error_is(const char *what, sh_status got,
             what, (int)got, err->line, err->column, err->path, err->message,
             (int)status, line, column, path, message);
   return ok;
+}
+
+/* Parses the scene text `json` as if read from the file `name` in the
+ * current directory. Returns the scene, or NULL after printing the located
+ * error. */
+static inline sh_scene *sh_test_parse(const char *json, const char *name) {
+  sh_error err;
+  sh_scene *s = NULL;
+  if (sh_scene_parse(json, name, ".", &s, &err) != SH_OK) {
+    char buf[2048];
+    sh_error_format(&err, buf, sizeof buf);
+    fprintf(stderr, "parse failed: %s\n", buf);
+  }
+  return s;
 }
 
 /* Makes a fresh directory for a test's files, `$TMPDIR/<name>.XXXXXX`

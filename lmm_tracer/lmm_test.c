@@ -13,14 +13,13 @@
 #include "sh_reference.h"
 #include "sh_test.h"
 
-static sh_scene *parse(const char *json) {
-  sh_error err;
-  sh_scene *s = NULL;
-  if (sh_scene_parse(json, "lmm_test.json", ".", &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "parse failed: %s\n", buf);
-  }
+/* Parses a test scene and builds its tracer into *rt; NULL (a failed
+ * check) when the scene does not parse. */
+static sh_scene *open_scene(const char *json, sh_rt **rt) {
+  sh_scene *s = sh_test_parse(json, "lmm_test.json");
+  SH_CHECK(s != NULL);
+  *rt = NULL;
+  if (s) SH_CHECK(sh_rt_create(s, rt, NULL) == SH_OK);
   return s;
 }
 
@@ -69,11 +68,9 @@ static double unshadowed(const sh_scene *s, sh_vec3 p) {
 }
 
 static void properties(void) {
-  sh_scene *s = parse(FLOOR_BOX);
-  SH_CHECK(s != NULL);
+  sh_rt *rt;
+  sh_scene *s = open_scene(FLOOR_BOX, &rt);
   if (!s) return;
-  sh_rt *rt = NULL;
-  SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
   sh_camera_frame f;
   sh_camera_frame_init(&s->camera, &f);
   double h = 0.1, kl = 2.0, r = h * kl;
@@ -146,7 +143,8 @@ static void properties(void) {
  * floor keeps the floor under it dark; a sheet with the light just behind
  * it near its edge stays dark on its front. */
 static void no_leaks(void) {
-  sh_scene *s = parse(
+  sh_rt *rt;
+  sh_scene *s = open_scene(
       "{\"format\": \"shafts-scene\", \"version\": 1,"
       " \"camera\": {\"position\": [0, 0.25, 3], \"look_at\": [0, 0.25, 0],"
       "  \"fov_y_deg\": 20, \"width\": 48, \"height\": 32},"
@@ -160,11 +158,9 @@ static void no_leaks(void) {
       "  {\"type\": \"box\", \"material\": \"m\", \"min\": [-4, 0.3, -4],"
       "   \"max\": [4, 0.31, 4]},"
       "  {\"type\": \"quad\", \"material\": \"m\", \"corner\": [-1, 0.02, 0],"
-      "   \"u\": [2, 0, 0], \"v\": [0, 0.26, 0]}]}");
-  SH_CHECK(s != NULL);
+      "   \"u\": [2, 0, 0], \"v\": [0, 0.26, 0]}]}",
+      &rt);
   if (!s) return;
-  sh_rt *rt = NULL;
-  SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
   sh_image img = {0};
   render(s, rt, 0.1, 2.0, LMM_SCHEME_REFRACT_TRACE, &img, NULL);
   /* Everything the camera sees is under the plate: the floor, lit by no
@@ -215,11 +211,9 @@ static double axis_crossing(double a, double n) {
 }
 
 static void semitransparent(void) {
-  sh_scene *s = parse(LENS);
-  SH_CHECK(s != NULL);
+  sh_rt *rt;
+  sh_scene *s = open_scene(LENS, &rt);
   if (!s) return;
-  sh_rt *rt = NULL;
-  SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
   sh_camera_frame f;
   sh_camera_frame_init(&s->camera, &f);
   sh_image img = {0};
@@ -339,12 +333,10 @@ static void controls(void) {
                           "caster casts_soft_shadows false",
                           "receiver receives_soft_shadows false"};
   for (int v = 0; v < 3; v++) {
-    sh_scene *s = parse(edit(text, sizeof text, base, variants[v][0],
-                             variants[v][1]));
-    SH_CHECK(s != NULL);
+    sh_rt *rt;
+    sh_scene *s = open_scene(
+        edit(text, sizeof text, base, variants[v][0], variants[v][1]), &rt);
     if (!s) continue;
-    sh_rt *rt = NULL;
-    SH_CHECK(sh_rt_create(s, &rt, NULL) == SH_OK);
     sh_image a = {0}, b = {0};
     render(s, rt, 0, 0, LMM_SCHEME_REFRACT_TRACE, &a, NULL);
     render(s, rt, 0.1, 2.0, LMM_SCHEME_REFRACT_TRACE, &b, NULL);
