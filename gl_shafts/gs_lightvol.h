@@ -18,11 +18,13 @@
 #include "gs_polytope.h"
 #include "gs_view.h"
 #include "sh_scene.h"
+#include "shaders/gs_shared.h"
 
+/* The shadow map's kind, as the shaders' SHADOW switch numbers it. */
 typedef enum gs__shadow_kind {
-  GS__SHADOW_NONE,
-  GS__SHADOW_2D,
-  GS__SHADOW_CUBE
+  GS__SHADOW_NONE = GS_SHADOW_NONE,
+  GS__SHADOW_2D = GS_SHADOW_2D,
+  GS__SHADOW_CUBE = GS_SHADOW_CUBE
 } gs__shadow_kind;
 
 #define GS__MAX_REGION 12

@@ -15,23 +15,29 @@
 static void defines(gs__params *p, const sh_scene *scene,
                     const gs__light_setup *ls, int live, const char *extra) {
   const sh_light *l = ls ? ls->light : NULL;
-  int type = !l ? 0 : l->type == SH_LIGHT_POINT ? 0 : l->type == SH_LIGHT_SPOT ? 1 : 2;
+  int type = !l || l->type == SH_LIGHT_POINT ? GS_LIGHT_POINT
+             : l->type == SH_LIGHT_SPOT        ? GS_LIGHT_SPOT
+                                               : GS_LIGHT_DIRECTIONAL;
   const sh_medium *m = &scene->medium;
-  int phase = 0;
+  int phase = GS_PHASE_ISOTROPIC;
   if (m->present) switch (m->phase.type) {
-    case SH_PHASE_ISOTROPIC: phase = 0; break;
-    case SH_PHASE_HENYEY_GREENSTEIN: phase = 1; break;
-    case SH_PHASE_NISHITA_HAZY: phase = 2; break;
-    case SH_PHASE_NISHITA_MURKY: phase = 3; break;
-    case SH_PHASE_RAYLEIGH: phase = 4; break;
+    case SH_PHASE_ISOTROPIC: phase = GS_PHASE_ISOTROPIC; break;
+    case SH_PHASE_HENYEY_GREENSTEIN: phase = GS_PHASE_HENYEY_GREENSTEIN; break;
+    case SH_PHASE_NISHITA_HAZY: phase = GS_PHASE_NISHITA_HAZY; break;
+    case SH_PHASE_NISHITA_MURKY: phase = GS_PHASE_NISHITA_MURKY; break;
+    case SH_PHASE_RAYLEIGH: phase = GS_PHASE_RAYLEIGH; break;
     }
   const sh_vec3 t = m->sigma_t;
   int grey = !m->present || (t.x == t.y && t.y == t.z);
   /* The spot profile's shape: smoothstep or hard edge; exponent 0, 1 or
    * other (pow). */
   int spot = l && l->type == SH_LIGHT_SPOT;
-  int smooth = spot && live ? 2 : spot && l->cos_inner > l->cos_outer;
-  int expo = !spot || l->exponent == 0 ? 0 : l->exponent == 1 ? 1 : 2;
+  int smooth = spot && live                       ? GS_SPOT_BY_VALUE
+               : spot && l->cos_inner > l->cos_outer ? GS_SPOT_SMOOTH
+                                                     : GS_SPOT_HARD;
+  int expo = !spot || l->exponent == 0 ? GS_SPOT_EXPONENT_0
+             : l->exponent == 1        ? GS_SPOT_EXPONENT_1
+                                       : GS_SPOT_EXPONENT_ANY;
   int inside = l && l->type != SH_LIGHT_DIRECTIONAL && m->present &&
                l->position.x >= m->bmin.x && l->position.x <= m->bmax.x &&
                l->position.y >= m->bmin.y && l->position.y <= m->bmax.y &&
@@ -42,7 +48,7 @@ static void defines(gs__params *p, const sh_scene *scene,
            "#define CONE_CLIP %d\n#define PHASE %d\n#define GREY_SIGMA %d\n"
            "#define SPOT_SMOOTH %d\n#define SPOT_EXPONENT %d\n"
            "#define LIGHT_INSIDE %d\n",
-           type, l ? l->has_map : 0, ls ? (int)ls->shadow : 0,
+           type, l ? l->has_map : 0, ls ? (int)ls->shadow : GS_SHADOW_NONE,
            ls ? ls->cone_clip : 0, phase, grey, smooth, expo, inside);
   gs__params_text(p, buf);
   if (extra) gs__params_text(p, extra);

@@ -10,6 +10,7 @@ int gs__program_source_parts(const gs__glsl *src, const char *defines, const cha
   int n = 0;
 #define ADD(s, l) (parts[n] = (s), lens[n++] = (GLint)(l))
   ADD("#version 450 core\n", -1);
+  ADD(gs__glsl_gs_shared_h.text, -1);
   ADD(defines, -1);
   ADD("\n#line 1\n", -1);
   ADD(gs__glsl_common_glsl.text, -1);
@@ -44,8 +45,8 @@ int gs__program_source_parts(const gs__glsl *src, const char *defines, const cha
 
 static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
                          GLuint *out, sh_error *err) {
-  const char *parts[9], *bad = NULL;
-  GLint lens[9];
+  const char *parts[GS__SOURCE_PARTS_MAX], *bad = NULL;
+  GLint lens[GS__SOURCE_PARTS_MAX];
   char line_after[32];
   int nparts = gs__program_source_parts(src, defines, parts, lens, line_after,
                                         sizeof line_after, &bad);

@@ -1,18 +1,21 @@
 // Declarations and functions shared by every gl_shafts shader. The program
 // builder (gs_program.c) puts "#version 450 core" and the variant's
 // #defines before this file and the stage's own file after it:
-//   LIGHT_TYPE  0 point, 1 spot, 2 directional
+// (the named values, GS_LIGHT_POINT ..., come from gs_shared.h, which the
+// builder puts first, and which the C code includes too)
+//   LIGHT_TYPE  GS_LIGHT_POINT, GS_LIGHT_SPOT or GS_LIGHT_DIRECTIONAL
 //   HAS_MAP     1 if the light has a light map
-//   SHADOW      0 none, 1 a 2D shadow map, 2 a cube shadow map
+//   SHADOW      GS_SHADOW_NONE, GS_SHADOW_2D or GS_SHADOW_CUBE
 //   CONE_CLIP   1 to clip rays to the spot's cone (outer angle < 90 degrees)
-//   PHASE       0 isotropic, 1 Henyey-Greenstein, 2 Nishita hazy,
-//               3 Nishita murky, 4 Rayleigh
+//   PHASE       GS_PHASE_ISOTROPIC, _HENYEY_GREENSTEIN, _NISHITA_HAZY,
+//               _NISHITA_MURKY or _RAYLEIGH
 //   XI_EXACT    1: xi per fragment; 0: interpolated from the lattice
 //   JITTER      1: jittered sample depth within each plane's slab
 //   GREY_SIGMA  1 if sigma_t is the same in R, G and B
-//   SPOT_SMOOTH 1 if the spot's inner angle is below its outer one; 2:
-//               either, by the values (live programs)
-//   SPOT_EXPONENT 0, 1, or 2 for any other cosine exponent
+//   SPOT_SMOOTH GS_SPOT_SMOOTH if the spot's inner angle is below its outer
+//               one, GS_SPOT_HARD if not, GS_SPOT_BY_VALUE: either, by the
+//               values (live programs)
+//   SPOT_EXPONENT GS_SPOT_EXPONENT_0, _1, or _ANY for any other exponent
 //   LIGHT_INSIDE 1 if a point or spot light is inside the medium's box
 //   TAU_SUB     1 if a slab can be optically thick: sample it by optical
 //               depth (live programs always do, with a rate of 0 when no
@@ -26,19 +29,19 @@
 // unnormalised direction of view_ray (d . forward = 1).
 
 #ifndef LIGHT_TYPE
-#define LIGHT_TYPE 0
+#define LIGHT_TYPE GS_LIGHT_POINT
 #endif
 #ifndef HAS_MAP
 #define HAS_MAP 0
 #endif
 #ifndef SHADOW
-#define SHADOW 0
+#define SHADOW GS_SHADOW_NONE
 #endif
 #ifndef CONE_CLIP
 #define CONE_CLIP 0
 #endif
 #ifndef PHASE
-#define PHASE 0
+#define PHASE GS_PHASE_ISOTROPIC
 #endif
 #ifndef XI_EXACT
 #define XI_EXACT 0
@@ -56,10 +59,10 @@
 #define LIGHT_INSIDE 0
 #endif
 #ifndef SPOT_SMOOTH
-#define SPOT_SMOOTH 1
+#define SPOT_SMOOTH GS_SPOT_SMOOTH
 #endif
 #ifndef SPOT_EXPONENT
-#define SPOT_EXPONENT 2
+#define SPOT_EXPONENT GS_SPOT_EXPONENT_ANY
 #endif
 
 const float PI = 3.14159265358979;
@@ -134,17 +137,17 @@ float box_exit(vec3 p, vec3 w) {
 
 // The normalised phase function at cos(alpha) (sh_phase_eval).
 float phase(float c) {
-#if PHASE == 1
+#if PHASE == GS_PHASE_HENYEY_GREENSTEIN
   float den = 1.0 + u_g * u_g - 2.0 * u_g * c;
   return (1.0 - u_g * u_g) / (4.0 * PI * den * sqrt(den));
-#elif PHASE == 2
+#elif PHASE == GS_PHASE_NISHITA_HAZY
   float x = 0.5 * (1.0 + c), x2 = x * x, x4 = x2 * x2;
   return (1.0 + 9.0 * x4 * x4) / (8.0 * PI);
-#elif PHASE == 3
+#elif PHASE == GS_PHASE_NISHITA_MURKY
   float y = 0.5 * (1.0 + c);
   y *= y; y *= y; y *= y; y *= y; y *= y;
   return 33.0 * (1.0 + 50.0 * y) / (332.0 * PI);
-#elif PHASE == 4
+#elif PHASE == GS_PHASE_RAYLEIGH
   return 3.0 * (1.0 + c * c) / (16.0 * PI);
 #else
   return 1.0 / (4.0 * PI);
@@ -153,20 +156,20 @@ float phase(float c) {
 
 // The spot profile at cos(theta) (sh_spot_profile).
 float spot_profile(float c) {
-#if SPOT_SMOOTH == 2
+#if SPOT_SMOOTH == GS_SPOT_BY_VALUE
   // A hard edge is u in {0, 1}, where the smoothstep is exact.
   float u = u_spot.y > u_spot.x ? clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0)
                                 : (c >= u_spot.x ? 1.0 : 0.0);
   float f = u * u * (3.0 - 2.0 * u);
-#elif SPOT_SMOOTH
+#elif SPOT_SMOOTH == GS_SPOT_SMOOTH
   float u = clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0);
   float f = u * u * (3.0 - 2.0 * u);
 #else
   float f = c >= u_spot.x ? 1.0 : 0.0;
 #endif
-#if SPOT_EXPONENT == 1
+#if SPOT_EXPONENT == GS_SPOT_EXPONENT_1
   f *= max(c, 0.0);
-#elif SPOT_EXPONENT == 2
+#elif SPOT_EXPONENT == GS_SPOT_EXPONENT_ANY
   f *= pow(max(c, 0.0), u_spot.z);
 #endif
   return f;
@@ -175,7 +178,7 @@ float spot_profile(float c) {
 // The light's angular pattern at p: spot profile times light map, or the
 // directional window's pattern (0 outside it); 1 for plain lights.
 vec3 light_pattern(vec3 p) {
-#if LIGHT_TYPE == 1
+#if LIGHT_TYPE == GS_LIGHT_SPOT
   vec3 d = p - u_lpos;
   float z = dot(d, u_ldir);
   vec3 f = vec3(spot_profile(z / max(length(d), 1e-30)));
@@ -185,7 +188,7 @@ vec3 light_pattern(vec3 p) {
   f *= texture(u_map, vec2(0.5 * (xy.x + 1.0), 0.5 * (1.0 - xy.y))).rgb;
 #endif
   return f;
-#elif LIGHT_TYPE == 2 && HAS_MAP
+#elif LIGHT_TYPE == GS_LIGHT_DIRECTIONAL && HAS_MAP
   vec2 st = vec2(dot(u_win_s.xyz, p) + u_win_s.w, dot(u_win_t.xyz, p) + u_win_t.w);
   if (st.x < 0.0 || st.x > 1.0 || st.y < 0.0 || st.y > 1.0) return vec3(0.0);
   return texture(u_map, st).rgb;
@@ -198,7 +201,7 @@ vec3 light_pattern(vec3 p) {
 // wi (the unit direction towards the light), with the light's pattern,
 // 1 / r^2 and the medium's transmittance (sh_light_incident times Tr).
 vec3 light_incident(vec3 p, out vec3 wi) {
-#if LIGHT_TYPE == 2
+#if LIGHT_TYPE == GS_LIGHT_DIRECTIONAL
   wi = -u_ldir;
   return u_lpower * light_pattern(p) * atten(medium_len_ray(p, wi));
 #else
@@ -215,7 +218,7 @@ vec3 light_incident(vec3 p, out vec3 wi) {
 // written so, live programs skip the products by 0 and 1 that baked ones
 // fold away (the same values, bit for bit).
 vec3 shadow_coord(vec4 q) {
-#if LIGHT_TYPE == 2
+#if LIGHT_TYPE == GS_LIGHT_DIRECTIONAL
   return q.xyz;
 #else
   return vec3(q.xy, u_shadow_near) / q.w;
@@ -224,9 +227,9 @@ vec3 shadow_coord(vec4 q) {
 
 // The light's visibility at p from its shadow map (1: lit).
 float shadow_at(vec3 p) {
-#if SHADOW == 1
+#if SHADOW == GS_SHADOW_2D
   return texture(u_shadow2d, shadow_coord(u_shadow_mat * vec4(p, 1.0)));
-#elif SHADOW == 2
+#elif SHADOW == GS_SHADOW_CUBE
   vec3 d = p - u_lpos;
   vec3 a = abs(d);
   return texture(u_shadowcube, vec4(d, u_shadow_near / max(a.x, max(a.y, a.z))));

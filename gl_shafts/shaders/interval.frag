@@ -47,11 +47,11 @@ void main() {
   float zs = texelFetch(u_lindepth, ivec2(gl_FragCoord.xy), 0).r;
   vec2 box = box_clip(u_eye, d, 0.0, zs);
   vec2 iv = box;
-#if LIGHT_TYPE == 1 && CONE_CLIP
+#if LIGHT_TYPE == GS_LIGHT_SPOT && CONE_CLIP
   vec2 c = cone_clip(u_eye, d);
   iv = vec2(max(iv.x, c.x), min(iv.y, c.y));
 #endif
-#if LIGHT_TYPE == 2 && HAS_MAP
+#if LIGHT_TYPE == GS_LIGHT_DIRECTIONAL && HAS_MAP
   iv = clip_unit(iv, dot(u_win_s.xyz, u_eye) + u_win_s.w, dot(u_win_s.xyz, d));
   iv = clip_unit(iv, dot(u_win_t.xyz, u_eye) + u_win_t.w, dot(u_win_t.xyz, d));
 #endif

@@ -23,7 +23,7 @@ vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
 float vis_dir(float z, vec3 d) { return shadow_at(u_eye + z * d); }
 
 float vis_part(float a, float b, float mid, vec3 d) {
-#if SHADOW
+#if SHADOW != GS_SHADOW_NONE
   float v0 = vis_dir(a, d), v1 = vis_dir(b, d);
   float v = 0.5 * (v0 + v1);
   if (abs(v1 - v0) > 0.5) {

@@ -19,13 +19,13 @@
 vec3 g_foot, g_e, g_dn;
 float g_h, g_b, g_entry, g_dl;
 vec2 g_ndc;
-#if LIGHT_TYPE == 1
+#if LIGHT_TYPE == GS_LIGHT_SPOT
 float g_ea, g_da; // e . axis, dn . axis
 #if HAS_MAP
 float g_er, g_dr, g_eu, g_du; // e and dn . the map's right and up
 #endif
 #endif
-#if SHADOW == 1
+#if SHADOW == GS_SHADOW_2D
 vec4 g_qf, g_qd; // the shadow lookup of the foot, and of dn
 #endif
 
@@ -44,7 +44,7 @@ vec3 sample_at(float c, float s) {
 #else
   vec3 v = xi_lattice(g_ndc, (g_b + k) / g_dl);
 #endif
-#if LIGHT_TYPE == 1
+#if LIGHT_TYPE == GS_LIGHT_SPOT
   float cl = s * g_da - c * g_ea; // cos of the angle from the spot's axis
   v *= spot_profile(cl);
 #if HAS_MAP
@@ -59,10 +59,10 @@ vec3 sample_at(float c, float s) {
 
 // The light's visibility at the angle (c, s).
 float vis_at(float c, float s) {
-#if SHADOW == 1
+#if SHADOW == GS_SHADOW_2D
   vec4 q = g_qf + (g_h * s / c) * g_qd;
   return texture(u_shadow2d, shadow_coord(q));
-#elif SHADOW == 2
+#elif SHADOW == GS_SHADOW_CUBE
   vec3 wi = c * g_e - s * g_dn;
   vec3 a = abs(wi);
   return texture(u_shadowcube, vec4(-wi, u_shadow_near * c / (g_h * max(a.x, max(a.y, a.z)))));
@@ -86,7 +86,7 @@ void main() {
   g_h = max(length(ev), 1e-6 * (abs(g_b) + 1.0));
   g_e = ev / g_h;
   g_entry = iv.z * g_dl;
-#if LIGHT_TYPE == 1
+#if LIGHT_TYPE == GS_LIGHT_SPOT
   g_ea = dot(g_e, u_ldir);
   g_da = dot(g_dn, u_ldir);
 #if HAS_MAP
@@ -96,7 +96,7 @@ void main() {
   g_du = dot(g_dn, u_map_up);
 #endif
 #endif
-#if SHADOW == 1
+#if SHADOW == GS_SHADOW_2D
   g_qf = u_shadow_mat * vec4(g_foot, 1.0);
   g_qd = u_shadow_mat * vec4(g_dn, 0.0);
 #endif
@@ -112,7 +112,7 @@ void main() {
   // branch and every loop to its longest lane, so the code has none but
   // this loop.
   float k = dtheta * u_inv_sub_angle;
-#if LIGHT_TYPE == 1 && HAS_MAP
+#if LIGHT_TYPE == GS_LIGHT_SPOT && HAS_MAP
   // A gobo: also one sample per u_sub_texels texels of the map that the
   // part's projection from the light crosses (a straight segment: the
   // projection of a line), which near the apex are many per degree.
@@ -144,12 +144,12 @@ void main() {
 #endif
   float c = ca * c0 - sa * s0, s = sa * c0 + ca * s0;
   vec3 sum = vec3(0.0);
-#if SHADOW
+#if SHADOW != GS_SHADOW_NONE
   float bc = ca, bs = sa;  // the start of the current step
   float v0 = vis_at(bc, bs);
 #endif
   for (int i = 0; i < n; i++) {
-#if SHADOW
+#if SHADOW != GS_SHADOW_NONE
     // Visibility: where it changes between a step's ends, the step holds a
     // shadow's edge: bisection finds it, and the step's visibility is the
     // fraction on each side; elsewhere it is sampled with the rest.

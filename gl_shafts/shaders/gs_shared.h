@@ -1,0 +1,39 @@
+/* The numbers the C code and the GLSL shaders share: the values of the
+ * variant switches (common.glsl lists the switches). This file is valid C
+ * and valid GLSL, so it holds only comments and #define lines of integer
+ * constants. gs_params.c includes it to write a variant's #define lines;
+ * the program builder (gs_program.c) puts it into every shader after
+ * "#version 450 core" and before the variant's #defines, so the shaders
+ * compare the switches with these names rather than with literals. */
+#ifndef GS_SHARED_H
+#define GS_SHARED_H
+
+/* LIGHT_TYPE: the kind of the light a program draws. */
+#define GS_LIGHT_POINT 0
+#define GS_LIGHT_SPOT 1
+#define GS_LIGHT_DIRECTIONAL 2
+
+/* PHASE: the medium's phase function (sh_phase_eval). */
+#define GS_PHASE_ISOTROPIC 0
+#define GS_PHASE_HENYEY_GREENSTEIN 1
+#define GS_PHASE_NISHITA_HAZY 2
+#define GS_PHASE_NISHITA_MURKY 3
+#define GS_PHASE_RAYLEIGH 4
+
+/* SHADOW: the light's shadow map (gs_lightvol.h). */
+#define GS_SHADOW_NONE 0
+#define GS_SHADOW_2D 1
+#define GS_SHADOW_CUBE 2
+
+/* SPOT_SMOOTH: the spot profile's edge; BY_VALUE chooses per fragment from
+ * the cone's angles (live programs). */
+#define GS_SPOT_HARD 0
+#define GS_SPOT_SMOOTH 1
+#define GS_SPOT_BY_VALUE 2
+
+/* SPOT_EXPONENT: the class of the spot's cosine exponent. */
+#define GS_SPOT_EXPONENT_0 0
+#define GS_SPOT_EXPONENT_1 1
+#define GS_SPOT_EXPONENT_ANY 2
+
+#endif
