@@ -141,15 +141,22 @@ static int analytic_query(const sh__prim *pr, const float *ray, unsigned N,
   return 1;
 }
 
+/* Whether lane i of an Embree ray packet is active, its mask selects the
+ * primitive, and its ray hits it: then *t and *n hold the hit. */
+static int analytic_lane_hits(const sh__prim *pr, const int *valid,
+                              const float *ray, unsigned N, unsigned i,
+                              double *t, sh_vec3 *n) {
+  if (valid[i] != -1 || !(SOA_U(ray, RAY_MASK, N, i) & pr->mask)) return 0;
+  return analytic_query(pr, ray, N, i, t, n);
+}
+
 static void analytic_intersect(const struct RTCIntersectFunctionNArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
   float *rh = (float *)a->rayhit;
   for (unsigned i = 0; i < a->N; i++) {
-    if (a->valid[i] != -1 || !(SOA_U(rh, RAY_MASK, a->N, i) & pr->mask))
-      continue;
     double t;
     sh_vec3 n;
-    if (!analytic_query(pr, rh, a->N, i, &t, &n)) continue;
+    if (!analytic_lane_hits(pr, a->valid, rh, a->N, i, &t, &n)) continue;
     SOA(rh, RAY_TFAR, a->N, i) = (float)t;
     SOA(rh, HIT_NG_X, a->N, i) = (float)n.x;
     SOA(rh, HIT_NG_Y, a->N, i) = (float)n.y;
@@ -166,11 +173,9 @@ static void analytic_occluded(const struct RTCOccludedFunctionNArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
   float *ray = (float *)a->ray;
   for (unsigned i = 0; i < a->N; i++) {
-    if (a->valid[i] != -1 || !(SOA_U(ray, RAY_MASK, a->N, i) & pr->mask))
-      continue;
     double t;
     sh_vec3 n;
-    if (analytic_query(pr, ray, a->N, i, &t, &n))
+    if (analytic_lane_hits(pr, a->valid, ray, a->N, i, &t, &n))
       SOA(ray, RAY_TFAR, a->N, i) = -INFINITY;
   }
 }
