@@ -268,15 +268,41 @@ sh_status sh__wrong(sh__pctx *c, const json_t *v, const char *expected) {
   return sh__fail(c, SH_ERR_SCENE, "expected %s, found %s", expected, found);
 }
 
+/* What an absent key gives: the "missing required key" error when it is
+ * required, SH_OK otherwise (the caller has written its default). */
+static sh_status absent(sh__pctx *c, const char *key, int required,
+                        const char *expected) {
+  return required ? sh__missing(c, key, expected) : SH_OK;
+}
+
+/* jansson's type tests are macros; these give typed() a function. */
+static int is_boolean(const json_t *v) { return json_is_boolean(v); }
+static int is_string(const json_t *v) { return json_is_string(v); }
+static int is_object(const json_t *v) { return json_is_object(v); }
+static int is_array(const json_t *v) { return json_is_array(v); }
+
+/* Looks up a key whose value must be of one JSON type: *out is the value,
+ * NULL when the key is absent and optional; the located error when it is
+ * absent and required or of another type. */
+static sh_status typed(sh__pctx *c, json_t *obj, const char *key, int required,
+                       const char *expected, int (*is)(const json_t *),
+                       json_t **out) {
+  json_t *v = json_object_get(obj, key);
+  *out = NULL;
+  if (!v) return absent(c, key, required, expected);
+  if (!is(v)) return expected_found(c, key, v, expected);
+  *out = v;
+  return SH_OK;
+}
+
 sh_status sh__number(sh__pctx *c, json_t *obj, const char *key, int required,
                      double def, sh__range r, double *out) {
   char want[120];
   json_t *v = json_object_get(obj, key);
   sh__describe_range(r, want, sizeof want);
   if (!v) {
-    if (required) return sh__missing(c, key, want);
     *out = def;
-    return SH_OK;
+    return absent(c, key, required, want);
   }
   if (!json_is_number(v)) return expected_found(c, key, v, want);
   double x = json_number_value(v);
@@ -295,9 +321,8 @@ sh_status sh__integer(sh__pctx *c, json_t *obj, const char *key, int required,
   else
     snprintf(want, sizeof want, "an integer from %lld to %lld", lo, hi);
   if (!v) {
-    if (required) return sh__missing(c, key, want);
     *out = def;
-    return SH_OK;
+    return absent(c, key, required, want);
   }
   long long x;
   if (json_is_integer(v)) {
@@ -325,9 +350,8 @@ sh_status sh__vec3(sh__pctx *c, json_t *obj, const char *key, int required,
   else
     snprintf(want, sizeof want, "an array of 3 finite numbers");
   if (!v) {
-    if (required) return sh__missing(c, key, want);
     *out = def;
-    return SH_OK;
+    return absent(c, key, required, want);
   }
   if (!json_is_array(v) || json_array_size(v) != 3)
     return expected_found(c, key, v, want);
@@ -368,28 +392,18 @@ sh_status sh__direction(sh__pctx *c, json_t *obj, const char *key, int required,
 
 sh_status sh__boolean(sh__pctx *c, json_t *obj, const char *key, int required,
                       int def, int *out) {
-  json_t *v = json_object_get(obj, key);
-  if (!v) {
-    if (required) return sh__missing(c, key, "true or false");
-    *out = def;
-    return SH_OK;
-  }
-  if (!json_is_boolean(v)) return expected_found(c, key, v, "true or false");
-  *out = json_is_true(v);
-  return SH_OK;
+  json_t *v;
+  sh_status st = typed(c, obj, key, required, "true or false", is_boolean, &v);
+  if (st == SH_OK) *out = v ? json_is_true(v) : def;
+  return st;
 }
 
 sh_status sh__string(sh__pctx *c, json_t *obj, const char *key, int required,
                      const char **out) {
-  json_t *v = json_object_get(obj, key);
-  if (!v) {
-    if (required) return sh__missing(c, key, "a string");
-    *out = NULL;
-    return SH_OK;
-  }
-  if (!json_is_string(v)) return expected_found(c, key, v, "a string");
-  *out = json_string_value(v);
-  return SH_OK;
+  json_t *v;
+  sh_status st = typed(c, obj, key, required, "a string", is_string, &v);
+  if (st == SH_OK) *out = v ? json_string_value(v) : NULL;
+  return st;
 }
 
 sh_status sh__choice(sh__pctx *c, json_t *obj, const char *key, int required,
@@ -400,9 +414,8 @@ sh_status sh__choice(sh__pctx *c, json_t *obj, const char *key, int required,
   join_names(names, list, sizeof list);
   snprintf(want, sizeof want, "a %s (one of: %s)", what, list);
   if (!v) {
-    if (required) return sh__missing(c, key, want);
     *out = def;
-    return SH_OK;
+    return absent(c, key, required, want);
   }
   if (!json_is_string(v)) return expected_found(c, key, v, want);
   const char *s = json_string_value(v);
@@ -419,29 +432,14 @@ sh_status sh__choice(sh__pctx *c, json_t *obj, const char *key, int required,
                      "unknown %s '%s'; expected one of: %s", what, s, list);
 }
 
-static sh_status container(sh__pctx *c, json_t *obj, const char *key,
-                           int required, json_t **out, int want_object) {
-  const char *want = want_object ? "an object" : "an array";
-  json_t *v = json_object_get(obj, key);
-  if (!v) {
-    if (required) return sh__missing(c, key, want);
-    *out = NULL;
-    return SH_OK;
-  }
-  if (want_object ? !json_is_object(v) : !json_is_array(v))
-    return expected_found(c, key, v, want);
-  *out = v;
-  return SH_OK;
-}
-
 sh_status sh__object(sh__pctx *c, json_t *obj, const char *key, int required,
                      json_t **out) {
-  return container(c, obj, key, required, out, 1);
+  return typed(c, obj, key, required, "an object", is_object, out);
 }
 
 sh_status sh__array(sh__pctx *c, json_t *obj, const char *key, int required,
                     json_t **out) {
-  return container(c, obj, key, required, out, 0);
+  return typed(c, obj, key, required, "an array", is_array, out);
 }
 
 sh_status sh__min_max(sh__pctx *c, json_t *obj, sh_vec3 *lo, sh_vec3 *hi) {
