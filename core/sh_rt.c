@@ -435,16 +435,26 @@ unsigned sh_rt_classes(const sh_rt *rt) { return rt->classes; }
 
 enum { STREAM_BATCH = 256 };
 
+/* The context of a ray stream, told whether its rays are coherent. */
+static void stream_context(struct RTCIntersectContext *ctx, int coherent) {
+  rtcInitIntersectContext(ctx);
+  ctx->flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                        : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+}
+
+/* How many of a stream's n rays the batch starting at base holds. */
+static int stream_batch(int n, int base) {
+  return n - base < STREAM_BATCH ? n - base : STREAM_BATCH;
+}
+
 void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
                             const sh_vec3 *d, double *t, int *shape,
                             int coherent, sh_rt_counters *c) {
   struct RTCRayHit rh[STREAM_BATCH];
   struct RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  stream_context(&ctx, coherent);
   for (int base = 0; base < n; base += STREAM_BATCH) {
-    int m = n - base < STREAM_BATCH ? n - base : STREAM_BATCH;
+    int m = stream_batch(n, base);
     for (int i = 0; i < m; i++) {
       set_ray(&rh[i].ray, o[base + i], d[base + i], 0.0, INFINITY, SH_RT_ALL);
       rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -469,11 +479,9 @@ void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
                            unsigned char *occluded, sh_rt_counters *c) {
   struct RTCRay r[STREAM_BATCH];
   struct RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                       : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  stream_context(&ctx, coherent);
   for (int base = 0; base < n; base += STREAM_BATCH) {
-    int m = n - base < STREAM_BATCH ? n - base : STREAM_BATCH;
+    int m = stream_batch(n, base);
     for (int i = 0; i < m; i++)
       set_ray(&r[i], o[base + i], d[base + i], 0.0, tmax[base + i], classes);
     rtcOccluded1M(rt->scene_all, &ctx, r, (unsigned)m, sizeof r[0]);
