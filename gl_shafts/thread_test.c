@@ -74,6 +74,15 @@ static void *draw_job(void *arg) {
   return NULL;
 }
 
+/* Runs two jobs at once, each on a thread of its own, and waits for both. */
+static void draw_at_once(job *a, job *b) {
+  pthread_t ta, tb;
+  pthread_create(&ta, NULL, draw_job, a);
+  pthread_create(&tb, NULL, draw_job, b);
+  pthread_join(ta, NULL);
+  pthread_join(tb, NULL);
+}
+
 static int same(const float *a, const float *b, size_t n) {
   return memcmp(a, b, n * sizeof *a) == 0;
 }
@@ -156,22 +165,14 @@ int main(void) {
   tu_check(st == SH_OK, "a second renderer");
   if (st == SH_OK) {
     job j1 = make_job(r, a), j2 = make_job(r2, b);
-    pthread_t t1, t2;
-    pthread_create(&t1, NULL, draw_job, &j1);
-    pthread_create(&t2, NULL, draw_job, &j2);
-    pthread_join(t1, NULL);
-    pthread_join(t2, NULL);
+    draw_at_once(&j1, &j2);
     tu_check(j1.st == SH_OK && j2.st == SH_OK, "two renderers draw at once on two threads");
     tu_check(j1.released && j2.released, "both threads have no context current after");
     tu_check(same(here, a, n) && same(here, b, n), "both images equal the first");
   }
   /* Two threads drawing at once with one renderer: the calls take turns. */
   job j3 = make_job(r, a), j4 = make_job(r, b);
-  pthread_t t3, t4;
-  pthread_create(&t3, NULL, draw_job, &j3);
-  pthread_create(&t4, NULL, draw_job, &j4);
-  pthread_join(t3, NULL);
-  pthread_join(t4, NULL);
+  draw_at_once(&j3, &j4);
   tu_check(j3.st == SH_OK && j4.st == SH_OK && same(here, a, n) && same(here, b, n),
            "two threads drawing with one renderer take turns, same images");
   if (!strcmp(stats.backend, "egl")) check_restores(r, a);
