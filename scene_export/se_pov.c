@@ -29,14 +29,19 @@ typedef struct pov {
 /* Numbers: 10 significant digits, enough for half-float output. */
 static void num(se_buf *b, double v) { se_buf_printf(b, "%.10g", v == 0 ? 0.0 : v); }
 
-/* "<x, y, z>" after `prefix`. */
-static void vector(se_buf *b, const char *prefix, sh_vec3 v) {
-  se_buf_printf(b, "%s<", prefix);
+/* "x, y, z": a vector's components, without the brackets. */
+static void components(se_buf *b, sh_vec3 v) {
   num(b, v.x);
   se_buf_puts(b, ", ");
   num(b, v.y);
   se_buf_puts(b, ", ");
   num(b, v.z);
+}
+
+/* "<x, y, z>" after `prefix`. */
+static void vector(se_buf *b, const char *prefix, sh_vec3 v) {
+  se_buf_printf(b, "%s<", prefix);
+  components(b, v);
   se_buf_puts(b, ">");
 }
 
@@ -304,11 +309,7 @@ static void material(pov *p, int i) {
     }
   }
   se_buf_puts(b, "  texture {\n    pigment { rgbt <");
-  num(b, pig.x);
-  se_buf_puts(b, ", ");
-  num(b, pig.y);
-  se_buf_puts(b, ", ");
-  num(b, pig.z);
+  components(b, pig);
   se_buf_puts(b, ", ");
   num(b, T);
   se_buf_puts(b, "> }\n    finish {\n      ambient ");
