@@ -62,6 +62,15 @@ static sh_scene *table_scene(int nlights, int size) {
   return s;
 }
 
+/* The table scene and its tracer in *rt; the benchmark stops when either
+ * cannot be made. */
+static sh_scene *traced_table(int nlights, int size, sh_rt **rt) {
+  sh_scene *s = table_scene(nlights, size);
+  *rt = NULL;
+  if (!s || sh_rt_create(s, rt, NULL) != SH_OK) exit(1);
+  return s;
+}
+
 typedef struct run {
   double seconds;
   uint64_t rays;
@@ -117,9 +126,8 @@ static void scaling(const int *sizes, int nsizes) {
          "| mesh points computed |\n|---|---|---|---|---|---|---|\n");
   for (int si = 0; si < nsizes; si++)
     for (int li = 0; li < 4; li++) {
-      sh_scene *s = table_scene(lights[li], sizes[si]);
-      sh_rt *rt = NULL;
-      if (!s || sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
+      sh_rt *rt;
+      sh_scene *s = traced_table(lights[li], sizes[si], &rt);
       sh_image a = {0}, b = {0};
       run ra = render(s, rt, 0, 0, 0, &a);
       run rb = render(s, rt, 1, 0.04, 2.0, &b);
@@ -139,9 +147,8 @@ static void scaling(const int *sizes, int nsizes) {
 static void area_quality(int size) {
   printf("## Soft shadows: LMM against area-light sampling (%d^2, 1 light)\n\n",
          size);
-  sh_scene *s = table_scene(1, size);
-  sh_rt *rt = NULL;
-  if (!s || sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
+  sh_rt *rt;
+  sh_scene *s = traced_table(1, size, &rt);
   sh_image lm = {0};
   run rl = render(s, rt, 1, 0.04, 2.0, &lm);
   /* The sphere light whose converged image is closest to LMM's. */
@@ -192,9 +199,8 @@ static void area_quality(int size) {
 static void ceiling(int size) {
   printf("## Rays per second against the Embree ceiling (%d^2, 1 thread)\n\n",
          size);
-  sh_scene *s = table_scene(1, size);
-  sh_rt *rt = NULL;
-  if (!s || sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
+  sh_rt *rt;
+  sh_scene *s = traced_table(1, size, &rt);
   sh_camera_frame f;
   sh_camera_frame_init(&s->camera, &f);
   int n = size * size;
@@ -247,8 +253,7 @@ static void ceiling(int size) {
   sh_rt_free(rt);
   sh_scene_free(s);
   /* The tracers themselves, one thread, 16 lights. */
-  s = table_scene(16, size);
-  if (!s || sh_rt_create(s, &rt, NULL) != SH_OK) exit(1);
+  s = traced_table(16, size, &rt);
   sh_image img = {0};
   for (int method = 0; method < 2; method++) {
     sh_reference_options opt = sh_reference_defaults(s);
