@@ -2,7 +2,6 @@
  * light maps (docs/scene-format.md, "lights"). */
 #include "sh_parse_int.h"
 
-#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -154,25 +153,17 @@ static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
   return SH_OK;
 }
 
+/* parse_light as sh__parse_objects calls it. */
+static sh_status read_light(sh__parser *p, json_t *o, void *item) {
+  return parse_light(p, o, item);
+}
+
 sh_status sh__parse_lights(sh__parser *p, json_t *root) {
-  sh__pctx *c = &p->c;
   sh_scene *s = p->scene;
-  json_t *a;
-  sh_status st;
-  if ((st = sh__array(c, root, "lights", 0, &a)) || !a) return st;
-  size_t n = json_array_size(a);
-  if (n == 0) return SH_OK;
-  if (n > INT_MAX / 2 || !(s->lights = calloc(n, sizeof *s->lights)))
-    return sh__fail_at(c, "lights", SH_ERR_NOMEM, "out of memory");
-  s->nlights = (int)n;
-  sh__push_key(c, "lights");
-  for (size_t i = 0; i < n; i++) {
-    json_t *o = json_array_get(a, i);
-    sh__push_index(c, (int)i);
-    if (!json_is_object(o)) return sh__wrong(c, o, "an object (a light)");
-    if ((st = parse_light(p, o, &s->lights[i]))) return st;
-    sh__pop(c);
-  }
-  sh__pop(c);
-  return SH_OK;
+  void *items;
+  sh_status st = sh__parse_objects(p, root, "lights", "an object (a light)",
+                                   sizeof *s->lights, read_light, &items,
+                                   &s->nlights);
+  s->lights = items;
+  return st;
 }

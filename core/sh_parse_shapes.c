@@ -2,7 +2,6 @@
  * their materials (docs/scene-format.md, "shapes"). */
 #include "sh_parse_int.h"
 
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -271,25 +270,17 @@ static sh_status parse_shape(sh__parser *p, json_t *o, sh_shape *sh) {
   return SH_OK;
 }
 
+/* parse_shape as sh__parse_objects calls it. */
+static sh_status read_shape(sh__parser *p, json_t *o, void *item) {
+  return parse_shape(p, o, item);
+}
+
 sh_status sh__parse_shapes(sh__parser *p, json_t *root) {
-  sh__pctx *c = &p->c;
   sh_scene *s = p->scene;
-  json_t *a;
-  sh_status st;
-  if ((st = sh__array(c, root, "shapes", 0, &a)) || !a) return st;
-  size_t n = json_array_size(a);
-  if (n == 0) return SH_OK;
-  if (n > INT_MAX / 2 || !(s->shapes = calloc(n, sizeof *s->shapes)))
-    return sh__fail_at(c, "shapes", SH_ERR_NOMEM, "out of memory");
-  s->nshapes = (int)n;
-  sh__push_key(c, "shapes");
-  for (size_t i = 0; i < n; i++) {
-    json_t *o = json_array_get(a, i);
-    sh__push_index(c, (int)i);
-    if (!json_is_object(o)) return sh__wrong(c, o, "an object (a shape)");
-    if ((st = parse_shape(p, o, &s->shapes[i]))) return st;
-    sh__pop(c);
-  }
-  sh__pop(c);
-  return SH_OK;
+  void *items;
+  sh_status st = sh__parse_objects(p, root, "shapes", "an object (a shape)",
+                                   sizeof *s->shapes, read_shape, &items,
+                                   &s->nshapes);
+  s->shapes = items;
+  return st;
 }
