@@ -54,6 +54,16 @@ def _executable(path):
     return Path(path).is_file() and os.access(path, os.X_OK)
 
 
+def _export_missing(ctx, program):
+    """Why a renderer reached through scene_export cannot run: the exporter
+    not built, or `program` not installed; None when both are there."""
+    if not _executable(ctx.tool(EXPORTER)):
+        return "%s is not built" % ctx.tool(EXPORTER)
+    if not shutil.which(program):
+        return "%s is not installed (tools/bootstrap.sh installs it)" % program
+    return None
+
+
 def _stats_seconds(path, key="seconds"):
     """The `seconds` figure of a --stats JSON file, or None."""
     try:
@@ -312,11 +322,7 @@ class PovRay(Adapter):
              "full": ((10, 1), (25, 1), (50, 1), (100, 1), (200, 1), (255, 4))}
 
     def missing(self, ctx):
-        if not _executable(ctx.tool(EXPORTER)):
-            return "%s is not built" % ctx.tool(EXPORTER)
-        if not shutil.which("povray"):
-            return "povray is not installed (tools/bootstrap.sh installs it)"
-        return None
+        return _export_missing(ctx, "povray")
 
     def version(self, ctx):
         return "%s; scene_export %s" % (_system_version(ctx, "povray"),
@@ -379,11 +385,7 @@ class _Blender(Adapter):
                      "Blender 3.4 writes a 4x4 image")
 
     def missing(self, ctx):
-        if not _executable(ctx.tool(EXPORTER)):
-            return "%s is not built" % ctx.tool(EXPORTER)
-        if not shutil.which("blender"):
-            return "blender is not installed (tools/bootstrap.sh installs it)"
-        return None
+        return _export_missing(ctx, "blender")
 
     def _run_blender(self, ctx, prefix, engine, samples, work, log, env=None, pre=()):
         py = work / "scene.py"
