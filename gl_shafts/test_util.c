@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gs_context.h"
 #include "sh_compare.h"
 #include "sh_parse.h"
 #include "sh_reference.h"
@@ -76,4 +77,15 @@ int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
   }
   sh_image_free(&diff);
   return 0;
+}
+
+gs__context *tu_context(void) {
+  gs__context *ctx = NULL;
+  sh_error err = {0};
+  if (gs__context_create(GS_BACKEND_AUTO, &ctx, &err) != SH_OK) {
+    printf("FAIL: no GL context: %s\n", err.message);
+    return NULL;
+  }
+  printf("backend %s, %s\n", gs__context_backend_name(ctx), gs__context_renderer(ctx));
+  return ctx;
 }

@@ -17,6 +17,12 @@ void tu_check(int cond, const char *what);
  * failure. */
 sh_scene *tu_scene(const char *json);
 
+/* A GL context of the default backend (SHAFTS_GL_BACKEND narrows it),
+ * current on the calling thread, for the tests that build programs
+ * themselves; prints the backend and renderer, or the error and returns
+ * NULL. Free it with gs__context_release and gs__context_free. */
+struct gs__context *tu_context(void);
+
 /* Renders with gl_shafts (opt NULL: the scene's defaults). Prints the error
  * and returns SH_OK or the failure. */
 sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out);

@@ -124,13 +124,8 @@ int main(void) {
       " \"shapes\": [{\"type\": \"sphere\", \"center\": [0, 0.6, 0], \"radius\": 0.5,"
       "   \"material\": \"grey\"}]}");
   if (!scene) return 1;
-  gs__context *ctx = NULL;
-  sh_error err = {0};
-  if (gs__context_create(GS_BACKEND_AUTO, &ctx, &err) != SH_OK) {
-    printf("FAIL: no GL context: %s\n", err.message);
-    return 1;
-  }
-  printf("backend %s, %s\n", gs__context_backend_name(ctx), gs__context_renderer(ctx));
+  gs__context *ctx = tu_context();
+  if (!ctx) return 1;
   gs__view view;
   gs__view_init(&view, scene);
   gs__params params = {0};

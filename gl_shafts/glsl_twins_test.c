@@ -1,0 +1,266 @@
+/* The GLSL physics functions of common.glsl against their C twins in core,
+ * on a grid of inputs: phase() against sh_phase_eval (isotropic,
+ * Henyey-Greenstein at several g, Nishita hazy and murky, Rayleigh),
+ * spot_profile() against sh_spot_profile (hard and smooth edges, the
+ * exponent classes 0, 1 and other), and box_clip() against sh_box_clip
+ * (rays from inside and outside, axis-parallel ones, bounded and unbounded
+ * intervals). Each runs in both kinds of program (baked and live).
+ *
+ * A tiny fragment shader (TWIN below) calls the function with inputs it
+ * fetches from float textures, one input per pixel, and writes the result
+ * into the RGBA32F image, which is read back. The parameters the shader
+ * sees (g, the cone's cosines, the box) are floats, so the C twin is given
+ * the same float values, and the difference is the function's own float
+ * arithmetic: it must stay within TOL = 1e-5 relative to the C value,
+ * where a value near 0 is measured against a floor, since it carries the
+ * absolute rounding of the larger terms it is made of: for the phase
+ * functions relative to max(|C|, 1e-4 * the largest C value on the grid);
+ * for the spot profile to max(|C|, 1e-2 * the largest), as the compiler
+ * may evaluate (c - cos_outer) / w as c / w - cos_outer / w, whose
+ * cancellation at the cone's edge costs about 1e-6 absolute (measured:
+ * 7e-5 relative at a profile of 1e-4); for the ray's interval
+ * relative to max(|t|, the box's size). The worst difference of each
+ * function is printed. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gs_context.h"
+#include "gs_params.h"
+#include "gs_target.h"
+#include "sh_light.h"
+#include "sh_medium.h"
+#include "test_util.h"
+
+#define W 64
+#define H 16
+#define N (W * H)
+#define TOL 1e-5
+
+/* TWIN 0: phase(in0.x); 1: spot_profile(in0.x); 2: box_clip(in0.xyz,
+ * in1.xyz, in0.w, in1.w) in .xy. */
+static const gs__glsl TWIN = {
+    "twin.frag",
+    "layout(binding = 6) uniform sampler2D u_in0;\n"
+    "layout(binding = 7) uniform sampler2D u_in1;\n"
+    "layout(location = 0) out vec4 o_color;\n"
+    "void main() {\n"
+    "  vec4 a = texelFetch(u_in0, ivec2(gl_FragCoord.xy), 0);\n"
+    "  vec4 b = texelFetch(u_in1, ivec2(gl_FragCoord.xy), 0);\n"
+    "#if TWIN == 0\n"
+    "  o_color = vec4(phase(a.x), 0.0, 0.0, 1.0);\n"
+    "#elif TWIN == 1\n"
+    "  o_color = vec4(spot_profile(a.x), 0.0, 0.0, 1.0);\n"
+    "#else\n"
+    "  o_color = vec4(box_clip(a.xyz, b.xyz, a.w, b.w), 0.0, 1.0);\n"
+    "#endif\n"
+    "}\n"};
+
+typedef struct twins {
+  sh_scene *scene;
+  gs__view view;
+  gs__params params;
+  gs__programs progs;
+  gs__target target;
+  GLuint in[2];
+} twins;
+
+/* Runs TWIN `which` on the inputs for light l (the scene's light 0), baked
+ * or live, into out (N RGBA). */
+static int run(twins *t, int which, int bake, const float *in0, const float *in1,
+               float *out) {
+  gs__light_setup ls = {.light = &t->scene->lights[0]};
+  gs__frame fr = {.scene = t->scene, .view = &t->view, .progs = &t->progs,
+                  .params = &t->params, .bake = bake};
+  char extra[32];
+  snprintf(extra, sizeof extra, "#define TWIN %d\n", which);
+  gs__params *p = gs__params_begin(&fr, &ls, extra);
+  gs__param_f(p, "u_depth", 0.0);
+  GLuint prog;
+  sh_error err = {0};
+  if (gs__program_use(&t->progs, &gs__glsl_screen_vert, &TWIN, p, &prog, &err) != SH_OK) {
+    printf("FAIL: the twin program: %s\n", err.message);
+    return 0;
+  }
+  glTextureSubImage2D(t->in[0], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, in0);
+  glTextureSubImage2D(t->in[1], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, in1);
+  glBindTextureUnit(6, t->in[0]);
+  glBindTextureUnit(7, t->in[1]);
+  glBindFramebuffer(GL_FRAMEBUFFER, t->target.fbo);
+  gs__target_draw_buffers(&t->target, 1);
+  glViewport(0, 0, W, H);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  static const float FULL[8] = {-1, -1, 1, -1, 1, 1, -1, 1};
+  gs__target_draw_polygon(&t->target, FULL, 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, out);
+  return gs__gl_check("reading the twin's image", &err) == SH_OK;
+}
+
+/* Compares out[4 i] with want[i] (both runs), printing the worst
+ * difference. */
+static void compare(const char *what, const float *got_baked, const float *got_live,
+                    const double *want, const float *in0, double floor) {
+  double top = 0, worst = 0;
+  int at = 0, live = 0;
+  for (int i = 0; i < N; i++) top = fmax(top, fabs(want[i]));
+  for (int k = 0; k < 2; k++) {
+    const float *got = k ? got_live : got_baked;
+    for (int i = 0; i < N; i++) {
+      double e = fabs(got[4 * i] - want[i]) / fmax(fabs(want[i]), floor * top);
+      if (!(e <= worst)) worst = e, at = i, live = k;
+    }
+  }
+  char msg[200];
+  snprintf(msg, sizeof msg, "%s: worst relative difference %.2g (at input %.9g, %s) <= %g",
+           what, worst, in0[4 * at], live ? "live" : "baked", TOL);
+  tu_check(worst <= TOL, msg);
+}
+
+static float in0[4 * N], in1[4 * N], outb[4 * N], outl[4 * N];
+static double want[N];
+
+static void test_phase(twins *t) {
+  for (int i = 0; i < N; i++) in0[4 * i] = (float)(-1.0 + 2.0 * i / (N - 1));
+  sh_medium *m = &t->scene->medium;
+  static const struct { sh_phase_type type; double g; const char *name; } cases[] = {
+      {SH_PHASE_ISOTROPIC, 0, "isotropic"},
+      {SH_PHASE_HENYEY_GREENSTEIN, -0.6, "Henyey-Greenstein g = -0.6"},
+      {SH_PHASE_HENYEY_GREENSTEIN, 0.3, "Henyey-Greenstein g = 0.3"},
+      {SH_PHASE_HENYEY_GREENSTEIN, 0.8, "Henyey-Greenstein g = 0.8"},
+      {SH_PHASE_NISHITA_HAZY, 0, "Nishita hazy"},
+      {SH_PHASE_NISHITA_MURKY, 0, "Nishita murky"},
+      {SH_PHASE_RAYLEIGH, 0, "Rayleigh"}};
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    m->phase.type = cases[c].type;
+    m->phase.g = (float)cases[c].g;
+    for (int i = 0; i < N; i++) want[i] = sh_phase_eval(&m->phase, in0[4 * i]);
+    char what[80];
+    snprintf(what, sizeof what, "phase, %s", cases[c].name);
+    if (run(t, 0, 1, in0, in1, outb) && run(t, 0, 0, in0, in1, outl))
+      compare(what, outb, outl, want, in0, 1e-4);
+    else
+      tu_check(0, what);
+  }
+}
+
+static void test_spot(twins *t) {
+  sh_light *l = &t->scene->lights[0];
+  static const struct { double outer, inner, exponent; } cases[] = {
+      {30, 30, 0}, {30, 20, 0}, {40, 10, 1}, {25, 25, 1}, {50, 35, 2.5}, {60, 5, 8}};
+  for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    l->cos_outer = (float)cos(cases[c].outer * SH_PI / 180);
+    l->cos_inner = (float)cos(cases[c].inner * SH_PI / 180);
+    l->exponent = (float)cases[c].exponent;
+    /* Half the grid over [-1, 1], half over the edge. */
+    for (int i = 0; i < N; i++) {
+      double a = l->cos_outer - 0.01, b = fmin(l->cos_inner + 0.01, 1.0);
+      in0[4 * i] = i < N / 2 ? (float)(-1.0 + 2.0 * i / (N / 2 - 1))
+                             : (float)(a + (b - a) * (i - N / 2) / (N / 2 - 1));
+      want[i] = sh_spot_profile(l, in0[4 * i]);
+    }
+    char what[80];
+    snprintf(what, sizeof what, "spot profile, outer %g, inner %g, exponent %g",
+             cases[c].outer, cases[c].inner, cases[c].exponent);
+    if (run(t, 1, 1, in0, in1, outb) && run(t, 1, 0, in0, in1, outl))
+      compare(what, outb, outl, want, in0, 1e-2);
+    else
+      tu_check(0, what);
+  }
+}
+
+/* A deterministic uniform number in [-1, 1) (a linear congruential
+ * sequence), so that every run sees the same rays. */
+static double uniform(unsigned *s) {
+  *s = *s * 1664525u + 1013904223u;
+  return (*s >> 8) / 8388608.0 - 1.0;
+}
+
+static void test_box(twins *t) {
+  sh_medium *m = &t->scene->medium;
+  m->bmin = sh_v3(-1, -0.5, -2);
+  m->bmax = sh_v3(1.5, 2, 0.75);
+  unsigned s = 12345;
+  static const float HI[3] = {3.0e38f, 1.0f, 4.0f};
+  for (int i = 0; i < N; i++) {
+    float *o = &in0[4 * i], *d = &in1[4 * i];
+    for (int a = 0; a < 3; a++) {
+      o[a] = (float)(2.5 * uniform(&s));
+      d[a] = (float)uniform(&s);
+    }
+    if (i % 7 == 0) d[i % 3] = 0; /* parallel to a pair of faces */
+    if (i % 11 == 0) d[0] = d[1] = 0;
+    o[3] = i % 5 == 0 ? 0.5f : 0.0f;
+    d[3] = HI[i % 3];
+  }
+  int ok = run(t, 2, 1, in0, in1, outb) && run(t, 2, 0, in0, in1, outl);
+  tu_check(ok, "box clipping runs");
+  if (!ok) return;
+  double size = 4.0, worst = 0;
+  int mismatched = 0, hits = 0;
+  for (int k = 0; k < 2; k++) {
+    const float *got = k ? outl : outb;
+    for (int i = 0; i < N; i++) {
+      const float *o = &in0[4 * i], *d = &in1[4 * i];
+      double t0 = 0, t1 = 0;
+      int hit = sh_box_clip(m->bmin, m->bmax, sh_v3(o[0], o[1], o[2]), sh_v3(d[0], d[1], d[2]),
+                            o[3], d[3], &t0, &t1);
+      int ghit = got[4 * i] < got[4 * i + 1];
+      hits += hit;
+      if (hit != ghit) {
+        if (mismatched++ < 5)
+          printf("  ray %d: C says %s, GLSL [%g, %g]\n", i, hit ? "hit" : "miss",
+                 got[4 * i], got[4 * i + 1]);
+        continue;
+      }
+      if (!hit) continue;
+      worst = fmax(worst, fabs(got[4 * i] - t0) / fmax(fabs(t0), size));
+      worst = fmax(worst, fabs(got[4 * i + 1] - t1) / fmax(fabs(t1), size));
+    }
+  }
+  printf("box clipping: %d of %d rays (both runs) cross the box\n", hits, 2 * N);
+  tu_check(hits > 2 * N / 5 && hits < 2 * N - 2 * N / 5, "the rays both hit and miss the box");
+  tu_check(mismatched == 0, "box clipping: GLSL and C agree on which rays cross the box");
+  char msg[120];
+  snprintf(msg, sizeof msg, "box clipping: worst relative difference of t0, t1 %.2g <= %g",
+           worst, TOL);
+  tu_check(worst <= TOL, msg);
+}
+
+int main(void) {
+  twins t = {0};
+  t.scene = tu_scene(
+      "{\"format\": \"shafts-scene\", \"version\": 1,"
+      " \"camera\": {\"position\": [2.5, 2, 3], \"look_at\": [0, 0.6, 0],"
+      "  \"fov_y_deg\": 45, \"width\": 64, \"height\": 16},"
+      " \"medium\": {\"sigma_s\": [0.2, 0.2, 0.2], \"sigma_a\": [0.01, 0.01, 0.01],"
+      "  \"bounds\": {\"min\": [-3, 0, -3], \"max\": [3, 4, 3]}},"
+      " \"lights\": [{\"type\": \"spot\", \"position\": [0, 3, 0],"
+      "  \"look_at\": [0, 0, 0], \"intensity\": [40, 40, 40],"
+      "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 20}],"
+      " \"shapes\": []}");
+  if (!t.scene) return 1;
+  gs__context *ctx = tu_context();
+  if (!ctx) return 1;
+  sh_error err = {0};
+  gs__view_init(&t.view, t.scene);
+  if (gs__target_create(&t.target, W, H, &err) != SH_OK) {
+    printf("FAIL: the target: %s\n", err.message);
+    return 1;
+  }
+  glCreateTextures(GL_TEXTURE_2D, 2, t.in);
+  for (int i = 0; i < 2; i++) glTextureStorage2D(t.in[i], 1, GL_RGBA32F, W, H);
+  test_phase(&t);
+  test_spot(&t);
+  test_box(&t);
+  glDeleteTextures(2, t.in);
+  gs__target_free(&t.target);
+  gs__programs_free(&t.progs);
+  gs__params_free(&t.params);
+  gs__context_release(ctx);
+  gs__context_free(ctx);
+  sh_scene_free(t.scene);
+  return tu_failures ? 1 : 0;
+}
