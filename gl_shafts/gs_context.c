@@ -26,6 +26,13 @@ void *gs__context_dlopen(const char *const *names, char *why, size_t why_size) {
   return NULL;
 }
 
+void *gs__context_dlsym(void *h, const char *lib, const char *symbol,
+                        char *why, size_t why_size) {
+  void *p = dlsym(h, symbol);
+  if (!p) snprintf(why, why_size, "%s has no %s", lib, symbol);
+  return p;
+}
+
 static gs__gl_proc get_proc(void *user, const char *name) {
   gs__context *ctx = user;
   return ctx->backend->get_proc(ctx->impl, name);

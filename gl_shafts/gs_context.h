@@ -91,4 +91,9 @@ int gs__egl_devices(char *buf, size_t size);
  * dlerror's reason in why. */
 void *gs__context_dlopen(const char *const *names, char *why, size_t why_size);
 
+/* dlsym of `symbol` in the library h that gs__context_dlopen opened as
+ * `lib`; on failure NULL, with "<lib> has no <symbol>" in why. */
+void *gs__context_dlsym(void *h, const char *lib, const char *symbol,
+                        char *why, size_t why_size);
+
 #endif

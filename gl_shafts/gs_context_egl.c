@@ -9,7 +9,6 @@
  * gives every caller in the process the same EGLDisplay for a device, so
  * eglTerminate could pull the display from under the application that
  * embeds gl_shafts (EGL_KHR_display_reference is not widely available). */
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -57,10 +56,9 @@ static void load(void) {
   void *h = gs__context_dlopen(names, load_error, sizeof load_error);
   if (!h) return;
 #define EGL_LOAD_CORE(type, name)                                            \
-  if (!(egl.name = (type)dlsym(h, "egl" #name))) {                           \
-    snprintf(load_error, sizeof load_error, "%s has no egl" #name, names[0]); \
-    return;                                                                  \
-  }
+  if (!(egl.name = (type)gs__context_dlsym(h, names[0], "egl" #name,         \
+                                           load_error, sizeof load_error)))  \
+    return;
   EGL_CORE(EGL_LOAD_CORE)
 #undef EGL_LOAD_CORE
 #define EGL_LOAD_EXT(type, name) egl.name = (type)egl.GetProcAddress("egl" #name);

@@ -2,7 +2,6 @@
  * dlopen so that gl_shafts builds without it (Mesa 25.1 removed it). The
  * few declarations it needs are copied here from Mesa's <GL/osmesa.h>,
  * which may be absent. */
-#include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -47,11 +46,10 @@ static void load(void) {
   void *h = gs__context_dlopen(names, load_error, sizeof load_error);
   if (!h) return;
 #define OSMESA_LOAD(type, name)                                              \
-  if (!(osmesa.name = (type)dlsym(h, "OSMesa" #name))) {                     \
-    snprintf(load_error, sizeof load_error, "%s has no OSMesa" #name,        \
-             names[0]);                                                      \
-    return;                                                                  \
-  }
+  if (!(osmesa.name = (type)gs__context_dlsym(h, names[0], "OSMesa" #name,   \
+                                              load_error,                    \
+                                              sizeof load_error)))           \
+    return;
   OSMESA_FUNCS(OSMESA_LOAD)
 #undef OSMESA_LOAD
 }
