@@ -23,32 +23,28 @@ static const char *WINDOW =
   " \"shapes\": [{\"type\": \"box\", \"material\": \"m\", \"min\": [-0.8, 1.2, -0.4],"
   "   \"max\": [-0.4, 1.6, 0.4]}]}";
 
-/* A spot seen from the side with its apex in view: its profile sweeps by
+/* A spot in a hazy medium, seen by the two cameras below. */
+#define SPOT_SCENE(camera)                                                   \
+  "{\"format\": \"shafts-scene\", \"version\": 1,"                           \
+  " \"camera\": {" camera ", \"fov_y_deg\": 50, \"width\": 80,"              \
+  "  \"height\": 60},"                                                       \
+  " \"medium\": {\"sigma_s\": [0.2, 0.2, 0.2],"                               \
+  "  \"phase\": {\"type\": \"nishita_hazy\"},"                                \
+  "  \"bounds\": {\"min\": [-4, 0, -4], \"max\": [4, 4, 4]}},"                \
+  " \"lights\": [{\"type\": \"spot\", \"position\": [-1, 3, 0],"              \
+  "  \"look_at\": [1, 0, 0], \"intensity\": [10, 10, 10],"                    \
+  "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 10}]}"
+
+/* The spot seen from the side with its apex in view: its profile sweeps by
  * within a plane near the apex, where the angular sub-samples matter. */
 static const char *SPOT =
-  "{\"format\": \"shafts-scene\", \"version\": 1,"
-  " \"camera\": {\"position\": [0, 1.5, 6], \"look_at\": [0, 1.5, 0],"
-  "  \"fov_y_deg\": 50, \"width\": 80, \"height\": 60},"
-  " \"medium\": {\"sigma_s\": [0.2, 0.2, 0.2],"
-  "  \"phase\": {\"type\": \"nishita_hazy\"},"
-  "  \"bounds\": {\"min\": [-4, 0, -4], \"max\": [4, 4, 4]}},"
-  " \"lights\": [{\"type\": \"spot\", \"position\": [-1, 3, 0],"
-  "  \"look_at\": [1, 0, 0], \"intensity\": [10, 10, 10],"
-  "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 10}]}";
+    SPOT_SCENE("\"position\": [0, 1.5, 6], \"look_at\": [0, 1.5, 0]");
 
 /* The same spot seen from below its apex: the lattice's convergence (right
  * at a light in view, interpolating xi cannot converge: its direction
  * term is discontinuous there). */
 static const char *SPOT_BODY =
-  "{\"format\": \"shafts-scene\", \"version\": 1,"
-  " \"camera\": {\"position\": [0, 1, 5], \"look_at\": [0.5, 0.6, 0],"
-  "  \"fov_y_deg\": 50, \"width\": 80, \"height\": 60},"
-  " \"medium\": {\"sigma_s\": [0.2, 0.2, 0.2],"
-  "  \"phase\": {\"type\": \"nishita_hazy\"},"
-  "  \"bounds\": {\"min\": [-4, 0, -4], \"max\": [4, 4, 4]}},"
-  " \"lights\": [{\"type\": \"spot\", \"position\": [-1, 3, 0],"
-  "  \"look_at\": [1, 0, 0], \"intensity\": [10, 10, 10],"
-  "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 10}]}";
+    SPOT_SCENE("\"position\": [0, 1, 5], \"look_at\": [0.5, 0.6, 0]");
 
 /* A stage spot with a gobo of polka dots, apex in view, its edge 1 degree
  * wide (so 1-degree angular steps): near the apex a ray's part crosses
