@@ -42,8 +42,8 @@
  * in1.xyz, in0.w, in1.w) in .xy. */
 static const gs__glsl TWIN = {
     "twin.frag",
-    "layout(binding = 6) uniform sampler2D u_in0;\n"
-    "layout(binding = 7) uniform sampler2D u_in1;\n"
+    "layout(binding = GS_UNIT_FREE) uniform sampler2D u_in0;\n"
+    "layout(binding = GS_UNIT_FREE + 1) uniform sampler2D u_in1;\n"
     "layout(location = 0) out vec4 o_color;\n"
     "void main() {\n"
     "  vec4 a = texelFetch(u_in0, ivec2(gl_FragCoord.xy), 0);\n"
@@ -85,8 +85,8 @@ static int run(twins *t, int which, int bake, const float *in0, const float *in1
   }
   glTextureSubImage2D(t->in[0], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, in0);
   glTextureSubImage2D(t->in[1], 0, 0, 0, W, H, GL_RGBA, GL_FLOAT, in1);
-  glBindTextureUnit(6, t->in[0]);
-  glBindTextureUnit(7, t->in[1]);
+  glBindTextureUnit(GS_UNIT_FREE, t->in[0]);
+  glBindTextureUnit(GS_UNIT_FREE + 1, t->in[1]);
   glBindFramebuffer(GL_FRAMEBUFFER, t->target.fbo);
   gs__target_draw_buffers(&t->target, 1);
   glViewport(0, 0, W, H);

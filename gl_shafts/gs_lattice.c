@@ -1,5 +1,7 @@
 #include "gs_lattice.h"
 
+#include "shaders/gs_shared.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -86,7 +88,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
   return gs__gl_check("uploading the lattice", err);
 }
 
-void gs__lattice_bind(const gs__lattice *lat) { glBindTextureUnit(4, lat->tex); }
+void gs__lattice_bind(const gs__lattice *lat) { glBindTextureUnit(GS_UNIT_XI, lat->tex); }
 
 void gs__lattice_free(gs__lattice *lat) {
   if (lat->tex) glDeleteTextures(1, &lat->tex);

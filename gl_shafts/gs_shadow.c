@@ -1,5 +1,7 @@
 #include "gs_shadow.h"
 
+#include "shaders/gs_shared.h"
+
 static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
                            sh_error *err) {
   gs__shadow_free(sm);
@@ -111,7 +113,8 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
 }
 
 void gs__shadow_bind(const gs__shadow_map *sm) {
-  glBindTextureUnit(sm->kind == GS__SHADOW_CUBE ? 2 : 1, sm->tex);
+  glBindTextureUnit(sm->kind == GS__SHADOW_CUBE ? GS_UNIT_SHADOW_CUBE : GS_UNIT_SHADOW_2D,
+                    sm->tex);
 }
 
 void gs__shadow_free(gs__shadow_map *sm) {

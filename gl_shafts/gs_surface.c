@@ -1,5 +1,7 @@
 #include "gs_surface.h"
 
+#include "shaders/gs_shared.h"
+
 static const float FULL_SCREEN[8] = {-1, -1, 1, -1, 1, 1, -1, 1};
 
 static sh_status background(const gs__frame *fr, const gs__target *t,
@@ -52,7 +54,7 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
     }
     if (ls) {
       if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(&shadows[pass]);
-      if (maps[pass]) glBindTextureUnit(0, maps[pass]);
+      if (maps[pass]) glBindTextureUnit(GS_UNIT_MAP, maps[pass]);
     }
     glBindVertexArray(geom->vao);
     /* Meshes first, then exact spheres (another program). */

@@ -1,5 +1,7 @@
 #include "gs_sweep.h"
 
+#include "shaders/gs_shared.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -121,7 +123,7 @@ static sh_status interval_pass(const gs__sweep_job *job, const gs__target *t,
   glBindFramebuffer(GL_FRAMEBUFFER, t->interval_fbo);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
-  glBindTextureUnit(5, t->lindepth);
+  glBindTextureUnit(GS_UNIT_LINDEPTH, t->lindepth);
   /* The light's screen rectangle, a pixel wider on every side; the planes
    * never leave it, so the rest of the texture may hold other lights'. */
   double px = 2.0 / t->width, py = 2.0 / t->height;
@@ -185,8 +187,8 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   if (st != SH_OK) return st;
   if (job->lattice) gs__lattice_bind(job->lattice);
   if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(job->shadow);
-  if (job->map) glBindTextureUnit(0, job->map);
-  glBindTextureUnit(3, t->interval);
+  if (job->map) glBindTextureUnit(GS_UNIT_MAP, job->map);
+  glBindTextureUnit(GS_UNIT_INTERVAL, t->interval);
 
   glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
   gs__target_draw_buffers(t, 1);

@@ -79,10 +79,10 @@ const float BIG = 3.0e38;
 //   window's coordinates s = dot(u_win_s.xyz, p) + u_win_s.w and u_win_t,
 //   the 2D shadow map's lookup u_shadow_mat (world to [0,1]^2 x reversed
 //   depth) and the cube map's near distance u_shadow_near.
-layout(binding = 0) uniform sampler2D u_map;
+layout(binding = GS_UNIT_MAP) uniform sampler2D u_map;
 
-layout(binding = 1) uniform sampler2DShadow u_shadow2d;
-layout(binding = 2) uniform samplerCubeShadow u_shadowcube;
+layout(binding = GS_UNIT_SHADOW_2D) uniform sampler2DShadow u_shadow2d;
+layout(binding = GS_UNIT_SHADOW_CUBE) uniform samplerCubeShadow u_shadowcube;
 
 // The unnormalised direction of the ray through a fragment's centre.
 vec3 view_ray(vec2 frag) {

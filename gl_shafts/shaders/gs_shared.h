@@ -36,4 +36,15 @@
 #define GS_SPOT_EXPONENT_1 1
 #define GS_SPOT_EXPONENT_ANY 2
 
+/* Texture units: where the C code binds each texture the shaders sample
+ * (layout(binding = ...)). Units from GS_UNIT_FREE up are unused by the
+ * renderer (the tests use them). */
+#define GS_UNIT_MAP 0         /* the light map, u_map */
+#define GS_UNIT_SHADOW_2D 1   /* u_shadow2d */
+#define GS_UNIT_SHADOW_CUBE 2 /* u_shadowcube */
+#define GS_UNIT_INTERVAL 3    /* the sweep's ray intervals, u_interval */
+#define GS_UNIT_XI 4          /* the xi lattice, u_xi */
+#define GS_UNIT_LINDEPTH 5    /* the surfaces' view depth, u_lindepth */
+#define GS_UNIT_FREE 6
+
 #endif

@@ -2,7 +2,7 @@
 // that the light can reach in the medium (inside the box, the spot's cone or
 // the window's prism, and in front of the surface), and the depth where the
 // ray enters the box (for the transmittance towards the eye).
-layout(binding = 5) uniform sampler2D u_lindepth;
+layout(binding = GS_UNIT_LINDEPTH) uniform sampler2D u_lindepth;
 layout(location = 0) out vec4 o_interval;
 
 // Keeps the z of [iv.x, iv.y] where 0 <= a + b z <= 1.

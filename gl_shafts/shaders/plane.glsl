@@ -13,8 +13,8 @@
 // sigma_t / u_sub_tau).
 flat in vec2 v_slab;
 flat in float v_plane;
-layout(binding = 3) uniform sampler2D u_interval;
-layout(binding = 4) uniform sampler3D u_xi;
+layout(binding = GS_UNIT_INTERVAL) uniform sampler2D u_interval;
+layout(binding = GS_UNIT_XI) uniform sampler3D u_xi;
 // Parameters (gs_sweep.c): u_xi_xy and u_xi_z map to the lattice texture
 // (s = ndc.x * x + y, t = ndc.y * z + w; r = z * x + y); u_inv_sub_angle
 // is 1 / the largest angle one sample stands for, u_inv_sub_texels 1 / the
