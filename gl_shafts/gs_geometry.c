@@ -193,8 +193,9 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
 }
 
 sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
-                              gs__geometry *g, int *rebuilt, sh_error *err) {
-  *rebuilt = 0;
+                              gs__geometry *g, int *rebuilt, int *changed,
+                              sh_error *err) {
+  *rebuilt = *changed = 0;
   if (scene->nshapes != g->nshapes)
     return sh_error_set(err, SH_ERR_ARG,
                         "the scene's shapes changed in number (%d, was %d): "
@@ -221,6 +222,7 @@ sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
     }
     nd.first = d->first;
     *d = nd;
+    *changed = 1;
     glNamedBufferSubData(g->vbo, (GLintptr)((size_t)d->first * 6 * sizeof(float)),
                          (GLsizeiptr)(b.n * 6 * sizeof(float)), b.v);
   }
@@ -228,7 +230,7 @@ sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
   if (st == SH_OK && whole) {
     gs__geometry_free(g);
     st = gs__geometry_build(scene, view, g, err);
-    *rebuilt = 1;
+    *rebuilt = *changed = 1;
   }
   if (st == SH_OK) st = gs__gl_check("updating the scene's triangles", err);
   return st;

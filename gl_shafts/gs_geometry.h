@@ -47,10 +47,12 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
  * the view (which sets curved shapes' tessellation): a shape that moved, or
  * whose tessellation error changed, is tessellated again and uploaded in
  * place; if its vertex count changed, the whole buffer is built again
- * (*rebuilt = 1: the vertex array object is new). The scene must have the
- * same shapes as when built (SH_ERR_ARG otherwise). */
+ * (*rebuilt = 1: the vertex array object is new). *changed = 1 if any
+ * shape's triangles changed (what shadow maps are keyed by). The scene must
+ * have the same shapes as when built (SH_ERR_ARG otherwise). */
 sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
-                              gs__geometry *g, int *rebuilt, sh_error *err);
+                              gs__geometry *g, int *rebuilt, int *changed,
+                              sh_error *err);
 
 void gs__geometry_free(gs__geometry *g);
 

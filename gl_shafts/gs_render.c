@@ -34,7 +34,9 @@ struct gs_renderer {
   GLuint *maps;               /* light-map textures, 0 if none */
   unsigned long long *map_hash; /* what each was uploaded from */
   gs__light_setup *lights;
-  gs__shadow_map *shadows;
+  int lights_stale;           /* work the light setups out at the next draw */
+  unsigned long geom_version; /* bumped when the triangles change */
+  gs__shadow_map *shadows;    /* kept across draws while their key holds */
   gs__lattice *lattices;
   float *readback;            /* width * height * 4 */
   long built_reported;        /* progs.built at the end of the last draw */
@@ -170,6 +172,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   r->scene = scene;
   r->opt = *opt;
   r->nlights = scene->nlights;
+  r->lights_stale = 1;
   size_t nl = (size_t)(scene->nlights ? scene->nlights : 1);
   r->maps = calloc(nl, sizeof *r->maps);
   r->map_hash = calloc(nl, sizeof *r->map_hash);
@@ -216,9 +219,15 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
   /* The near plane follows the scene's bounds, which every part moves. */
   if (changed) gs__view_init(&r->view, scene);
   if (st == SH_OK && (changed & (SH_CHANGED_CAMERA | SH_CHANGED_SHAPES))) {
-    int rebuilt;
-    st = gs__geometry_update(scene, &r->view, &r->geom, &rebuilt, err);
+    int rebuilt, moved;
+    st = gs__geometry_update(scene, &r->view, &r->geom, &rebuilt, &moved, err);
+    if (moved) r->geom_version++;
   }
+  /* The light setups follow the lights, the medium's box, the shapes and
+   * the view (the lit volume is clipped to the frustum, a directional
+   * light's map is fitted to it); the background and ambient leave them
+   * as they are. The shadow maps are then kept unless their key changed. */
+  if (changed & ~(unsigned)SH_CHANGED_ENVIRONMENT) r->lights_stale = 1;
   if (st == SH_OK && (changed & SH_CHANGED_LIGHTS)) st = sync_maps(r, err);
   return st;
 }
@@ -267,16 +276,20 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   gs__frame fr = {scene, &r->view, &r->progs, &r->params, !o->live};
   double start = sh_seconds(), t = start;
 
-  /* Lights: their volumes and shadow maps. */
-  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+  /* Lights: their volumes (when a sync changed what they follow) and
+   * shadow maps (when their key changed). */
+  for (int i = 0; i < r->nlights && st == SH_OK && r->lights_stale; i++) {
     gs__light_setup_free(&r->lights[i]);
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
-    if (st == SH_OK && r->lights[i].shadow != GS__SHADOW_NONE) {
-      st = gs__shadow_render(&r->shadows[i], &fr, &r->lights[i],
-                             gs_light_shadow_map_res(o, scene->lights[i].type),
-                             &r->geom, err);
-      s.shadow_maps++;
-    }
+  }
+  if (st == SH_OK) r->lights_stale = 0;
+  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+    if (r->lights[i].shadow == GS__SHADOW_NONE) continue;
+    int drawn = 0;
+    st = gs__shadow_update(&r->shadows[i], &fr, &r->lights[i],
+                           gs_light_shadow_map_res(o, scene->lights[i].type),
+                           &r->geom, r->geom_version, &drawn, err);
+    s.shadow_maps += drawn;
   }
   if (st == SH_OK) s.shadow_seconds = lap(&t);
 

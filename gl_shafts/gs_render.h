@@ -143,7 +143,8 @@ typedef struct gs_stats {
                               uploading the scene, compiling shaders
                               (not in `seconds`) */
   int lights_swept;        /* lights whose lit volume the camera sees */
-  int shadow_maps;         /* shadow maps rendered */
+  int shadow_maps;         /* shadow maps rendered in this draw (a map
+                              whose key did not change is kept) */
   long planes;             /* planes drawn, over all lights */
   long lattice_points;     /* xi evaluations on the CPU */
   double fragments;        /* plane fragments that added light */
@@ -179,8 +180,12 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
  * a new size resizes the render targets, the camera and the shape
  * transforms update the triangles of the shapes they concern (moved
  * shapes, and curved ones whose tessellation follows the view), a light
- * map that changed is uploaded again. Lights, shadow maps and the medium
- * are worked out at every draw anyway. No program is built here; with
+ * map that changed is uploaded again. The lights' volumes are worked out
+ * again at the next draw after any change but the background's or the
+ * ambient's; a light's shadow map is drawn again only if its projection,
+ * its casters or their triangles changed (a shape moved, a curved shape's
+ * tessellation followed the camera; a directional light's map follows the
+ * view), else it is kept from the last draw. No program is built here; with
  * gs_options.live, the next draw builds none either unless a structural
  * switch changed (a light map added or removed, the phase function's
  * type, a spot's shadow-map kind, the medium's grey coefficients turning

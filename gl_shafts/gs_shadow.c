@@ -1,10 +1,23 @@
 #include "gs_shadow.h"
 
+#include <stdlib.h>
+#include <string.h>
+
 #include "shaders/gs_shared.h"
+
+/* Deletes the texture and framebuffer, keeping the key's storage. */
+static void release_gl(gs__shadow_map *sm) {
+  if (sm->fbo) glDeleteFramebuffers(1, &sm->fbo);
+  if (sm->tex) glDeleteTextures(1, &sm->tex);
+  sm->fbo = sm->tex = 0;
+  sm->res = 0;
+  sm->kind = GS__SHADOW_NONE;
+  sm->key.valid = 0;
+}
 
 static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
                            sh_error *err) {
-  gs__shadow_free(sm);
+  release_gl(sm);
   GLenum target = kind == GS__SHADOW_CUBE ? GL_TEXTURE_CUBE_MAP : GL_TEXTURE_2D;
   glCreateTextures(target, 1, &sm->tex);
   glTextureStorage2D(sm->tex, 1, GL_DEPTH_COMPONENT32F, res, res);
@@ -112,15 +125,55 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
   return gs__gl_check("rendering a shadow map", err);
 }
 
+/* Whether sm->key equals the key of drawing ls at this size and version. */
+static int key_matches(const gs__shadow_map *sm, const gs__light_setup *ls, int res,
+                       int nshapes, unsigned long geom_version) {
+  const gs__shadow_key *k = &sm->key;
+  if (!k->valid || !sm->tex || sm->kind != ls->shadow || sm->res != res ||
+      k->geom_version != geom_version || k->nfaces != ls->nfaces ||
+      k->ncasts != nshapes)
+    return 0;
+  if (memcmp(k->face_vp, ls->face_vp, (size_t)ls->nfaces * sizeof ls->face_vp[0]) ||
+      memcmp(k->light_front, ls->light_front,
+             (size_t)ls->nfaces * sizeof ls->light_front[0]))
+    return 0;
+  return !nshapes || !memcmp(k->casts, ls->casts, (size_t)nshapes);
+}
+
+sh_status gs__shadow_update(gs__shadow_map *sm, const gs__frame *fr,
+                            const gs__light_setup *ls, int res,
+                            const gs__geometry *geom, unsigned long geom_version,
+                            int *drawn, sh_error *err) {
+  *drawn = 0;
+  int n = geom->nshapes;
+  if (key_matches(sm, ls, res, n, geom_version)) return SH_OK;
+  gs__shadow_key *k = &sm->key;
+  k->valid = 0;
+  if (k->ncasts != n) {
+    unsigned char *c = realloc(k->casts, (size_t)(n ? n : 1));
+    if (!c) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+    k->casts = c;
+    k->ncasts = n;
+  }
+  sh_status st = gs__shadow_render(sm, fr, ls, res, geom, err);
+  if (st != SH_OK) return st;
+  *drawn = 1;
+  k->geom_version = geom_version;
+  k->nfaces = ls->nfaces;
+  memcpy(k->face_vp, ls->face_vp, sizeof k->face_vp);
+  memcpy(k->light_front, ls->light_front, sizeof k->light_front);
+  if (n) memcpy(k->casts, ls->casts, (size_t)n);
+  k->valid = 1;
+  return SH_OK;
+}
+
 void gs__shadow_bind(const gs__shadow_map *sm) {
   glBindTextureUnit(sm->kind == GS__SHADOW_CUBE ? GS_UNIT_SHADOW_CUBE : GS_UNIT_SHADOW_2D,
                     sm->tex);
 }
 
 void gs__shadow_free(gs__shadow_map *sm) {
-  if (sm->fbo) glDeleteFramebuffers(1, &sm->fbo);
-  if (sm->tex) glDeleteTextures(1, &sm->tex);
-  sm->fbo = sm->tex = 0;
-  sm->res = 0;
-  sm->kind = GS__SHADOW_NONE;
+  release_gl(sm);
+  free(sm->key.casts);
+  memset(&sm->key, 0, sizeof sm->key);
 }

@@ -106,16 +106,6 @@ static unsigned update(sh_scene *s, const params *p) {
   return changed;
 }
 
-static int draw(gs_renderer *r, const sh_scene *s, sh_image *img, gs_stats *st) {
-  sh_error err;
-  if (sh_image_alloc(img, s->camera.width, s->camera.height, NULL) != SH_OK) return 0;
-  if (gs_renderer_draw(r, img->rgb, st, &err) != SH_OK) {
-    fprintf(stderr, "draw: %s\n", err.message);
-    return 0;
-  }
-  return 1;
-}
-
 /* A fresh renderer's frame of s. */
 static int fresh(const sh_scene *s, int live, sh_image *img, gs_stats *st) {
   gs_options o = gs_options_defaults(s);
@@ -126,17 +116,9 @@ static int fresh(const sh_scene *s, int live, sh_image *img, gs_stats *st) {
     fprintf(stderr, "create: %s\n", err.message);
     return 0;
   }
-  int ok = draw(r, s, img, st);
+  int ok = tu_draw(r, s, img, st);
   gs_renderer_free(r);
   return ok;
-}
-
-static int equal(const char *name, const sh_image *a, const sh_image *b) {
-  size_t n = (size_t)a->width * a->height * 3, diff = 0;
-  for (size_t i = 0; i < n; i++) diff += a->rgb[i] != b->rgb[i];
-  fprintf(stderr, "%-40s %zu of %zu values differ\n", name, diff, n);
-  if (diff) tu_check_close(name, a, b, 0.0); /* writes the images */
-  return diff == 0;
 }
 
 /* Changes the live renderer's scene to p's values (sh_scene_update, which
@@ -157,13 +139,13 @@ static void step(const char *name, gs_renderer *r, sh_scene *s, const params *p,
   if (!to) return;
   sh_image warm = {0}, ref = {0};
   gs_stats st, fst;
-  SH_CHECK(draw(r, s, &warm, &st));
+  SH_CHECK(tu_draw(r, s, &warm, &st));
   SH_CHECK(fresh(to, 1, &ref, &fst));
   fprintf(stderr, "%s: changed 0x%x, %d programs compiled, %d cached\n", name, changed,
           st.programs_compiled, st.programs_cached);
   if (structural) SH_CHECK(st.programs_compiled > 0);
   else SH_CHECK(st.programs_compiled == 0);
-  if (warm.rgb && ref.rgb) SH_CHECK(equal(name, &warm, &ref));
+  if (warm.rgb && ref.rgb) SH_CHECK(tu_equal_bits(name, &warm, &ref));
   sh_image_free(&warm);
   sh_image_free(&ref);
   sh_scene_free(to);
@@ -227,14 +209,14 @@ int main(void) {
   if (r) {
     sh_image first = {0}, again = {0};
     gs_stats a, b;
-    SH_CHECK(draw(r, s, &first, &a) && draw(r, s, &again, &b));
+    SH_CHECK(tu_draw(r, s, &first, &a) && tu_draw(r, s, &again, &b));
     fprintf(stderr, "first frame: %d programs compiled; warm: %d\n", a.programs_compiled,
             b.programs_compiled);
     SH_CHECK(a.programs_compiled > 0 && a.programs_compiled == a.programs_cached);
     SH_CHECK(b.programs_compiled == 0 && b.programs_cached == a.programs_cached);
     if (first.rgb && again.rgb && live.rgb) {
-      SH_CHECK(equal("warm_frame", &again, &first));
-      SH_CHECK(equal("first_frame_vs_fresh", &first, &live));
+      SH_CHECK(tu_equal_bits("warm_frame", &again, &first));
+      SH_CHECK(tu_equal_bits("first_frame_vs_fresh", &first, &live));
     }
     sh_image_free(&first);
     sh_image_free(&again);

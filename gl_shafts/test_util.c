@@ -89,3 +89,21 @@ gs__context *tu_context(void) {
   printf("backend %s, %s\n", gs__context_backend_name(ctx), gs__context_renderer(ctx));
   return ctx;
 }
+
+int tu_draw(gs_renderer *r, const sh_scene *s, sh_image *img, gs_stats *stats) {
+  sh_error err;
+  if (sh_image_alloc(img, s->camera.width, s->camera.height, NULL) != SH_OK) return 0;
+  if (gs_renderer_draw(r, img->rgb, stats, &err) != SH_OK) {
+    fprintf(stderr, "draw: %s\n", err.message);
+    return 0;
+  }
+  return 1;
+}
+
+int tu_equal_bits(const char *name, const sh_image *a, const sh_image *b) {
+  size_t n = (size_t)a->width * a->height * 3, diff = 0;
+  for (size_t i = 0; i < n; i++) diff += a->rgb[i] != b->rgb[i];
+  fprintf(stderr, "%-40s %zu of %zu values differ\n", name, diff, n);
+  if (diff) tu_check_close(name, a, b, 0.0); /* writes the images */
+  return diff == 0;
+}

@@ -39,4 +39,12 @@ double tu_error(const sh_image *img, const sh_image *ref);
 int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
                    double bound);
 
+/* Draws a kept renderer's frame of s into img (allocated here; the caller
+ * frees it). Prints the error and returns 0 on failure, else 1. */
+int tu_draw(gs_renderer *r, const sh_scene *s, sh_image *img, gs_stats *stats);
+
+/* Whether a and b hold the same values bit for bit, printing how many
+ * differ; on a difference writes the images as tu_check_close does. */
+int tu_equal_bits(const char *name, const sh_image *a, const sh_image *b);
+
 #endif
