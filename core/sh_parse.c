@@ -53,7 +53,7 @@ sh_status sh__parse_camera(sh__parser *p, json_t *root) {
            sh__vec3(c, o, "position", 1, sh_v3s(0), sh__any, &cam->position)) ||
       (st = sh__vec3(c, o, "look_at", 1, sh_v3s(0), sh__any, &cam->look_at)) ||
       (st = sh__direction(c, o, "up", 0, &cam->up, NULL)) ||
-      (st = sh__number(c, o, "fov_y_deg", 1, 0, (sh__range){0, 180, 1, 1},
+      (st = sh__number(c, o, "fov_y_deg", 1, 0, (sh__range){1e-6, 180, 0, 1},
                        &cam->fov_y_deg)) ||
       (st = sh__integer(c, o, "width", 1, 0, 1, MAX_IMAGE_SIZE, &w)) ||
       (st = sh__integer(c, o, "height", 1, 0, 1, MAX_IMAGE_SIZE, &h)))
@@ -115,8 +115,8 @@ sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   if ((st = sh__object(c, root, "medium", 0, &o)) || !o) return st;
   sh__push_key(c, "medium");
   if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys), "the medium")) ||
-      (st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__ge0, &m->sigma_s)) ||
-      (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__ge0, &m->sigma_a)) ||
+      (st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__quantity, &m->sigma_s)) ||
+      (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__quantity, &m->sigma_a)) ||
       (st = parse_phase(p, o)) || (st = sh__object(c, o, "bounds", 1, &b)))
     return st;
   sh__push_key(c, "bounds");
@@ -190,7 +190,7 @@ static sh_status parse_materials(sh__parser *p, json_t *root) {
         (st = sh__vec3(c, mo, "transmit", 0, sh_v3s(0), sh__ge0,
                        &m->transmit)) ||
         (st = sh__number(c, mo, "ior", 0, 1, sh__gt0, &m->ior)) ||
-        (st = sh__vec3(c, mo, "emission", 0, sh_v3s(0), sh__ge0,
+        (st = sh__vec3(c, mo, "emission", 0, sh_v3s(0), sh__quantity,
                        &m->emission)) ||
         (st = sh__boolean(c, mo, "casts_soft_shadows", 0, 1,
                           &m->casts_soft_shadows)) ||
@@ -325,9 +325,9 @@ static sh_status parse_root(sh__parser *p, json_t *root) {
   if (!json_object_get(root, "version"))
     return sh__missing(c, "version", "the number 1");
   if ((st = sh__parse_camera(p, root)) ||
-      (st = sh__vec3(c, root, "background", 0, sh_v3s(0), sh__ge0,
+      (st = sh__vec3(c, root, "background", 0, sh_v3s(0), sh__quantity,
                      &s->background)) ||
-      (st = sh__vec3(c, root, "ambient", 0, sh_v3s(0), sh__ge0, &s->ambient)) ||
+      (st = sh__vec3(c, root, "ambient", 0, sh_v3s(0), sh__quantity, &s->ambient)) ||
       (st = sh__parse_medium(p, root)) || (st = parse_materials(p, root)) ||
       (st = sh__parse_lights(p, root)) || (st = sh__parse_shapes(p, root)) ||
       (st = parse_render(p, root)))

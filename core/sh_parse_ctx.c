@@ -10,6 +10,7 @@
 const sh__range sh__any = {-INFINITY, INFINITY, 1, 1};
 const sh__range sh__ge0 = {0.0, INFINITY, 0, 1};
 const sh__range sh__gt0 = {0.0, INFINITY, 1, 1};
+const sh__range sh__quantity = {0.0, SH__QUANTITY_MAX, 0, 0};
 
 void sh__push_key(sh__pctx *c, const char *key) {
   if (c->depth < SH__PATH_MAX) {

@@ -41,6 +41,13 @@ typedef struct sh__range {
 extern const sh__range sh__any; /* every finite number */
 extern const sh__range sh__ge0; /* >= 0 */
 extern const sh__range sh__gt0; /* > 0 */
+/* Radiometric quantities and coefficients (intensity, irradiance,
+ * emission, background, ambient, sigma_s, sigma_a): in [0, SH__QUANTITY_MAX].
+ * The bound keeps every product a renderer forms in single precision
+ * (GL) finite: 1e30 leaves eight orders of magnitude below float's 3.4e38,
+ * while a scene scaled by 1e4 (intensity times 1e8) stays far inside. */
+#define SH__QUANTITY_MAX 1e30
+extern const sh__range sh__quantity;
 
 /* Enters or leaves an object member or array element. Keys must outlive
  * their time on the path (string literals, or keys of the JSON tree). */

@@ -51,7 +51,8 @@ static sh_status parse_spot(sh__parser *p, json_t *o, sh_light *l) {
                          "axis");
   }
   if ((st =
-           sh__vec3(c, o, "intensity", 1, sh_v3s(0), sh__ge0, &l->intensity)) ||
+           sh__vec3(c, o, "intensity", 1, sh_v3s(0), sh__quantity,
+                    &l->intensity)) ||
       (st = sh__number(c, o, "outer_angle_deg", 1, 0, (sh__range){0, 180, 1, 1},
                        &l->outer_deg)) ||
       (st = sh__number(c, o, "inner_angle_deg", 0, l->outer_deg,
@@ -132,7 +133,8 @@ static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
     if ((st =
              sh__vec3(c, o, "position", 1, sh_v3s(0), sh__any, &l->position)) ||
         (st =
-             sh__vec3(c, o, "intensity", 1, sh_v3s(0), sh__ge0, &l->intensity)))
+             sh__vec3(c, o, "intensity", 1, sh_v3s(0), sh__quantity,
+                    &l->intensity)))
       return st;
     break;
   case SH_LIGHT_SPOT:
@@ -140,7 +142,7 @@ static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
     break;
   case SH_LIGHT_DIRECTIONAL:
     if ((st = sh__direction(c, o, "direction", 1, &l->direction, NULL)) ||
-        (st = sh__vec3(c, o, "irradiance", 1, sh_v3s(0), sh__ge0,
+        (st = sh__vec3(c, o, "irradiance", 1, sh_v3s(0), sh__quantity,
                        &l->irradiance)))
       return st;
     break;

@@ -452,7 +452,7 @@ static const bad_case bad_cases[] = {
      "render.seed", "too large"},
     /* Types. */
     {HEAD "\"background\": \"black\"}", SH_ERR_SCENE, 3, 15, "background",
-     "expected an array of 3 numbers >= 0, found the string \"black\""},
+     "expected an array of 3 numbers in [0, 1e+30], found the string \"black\""},
     {HEAD "\"background\": [1, 1]}", SH_ERR_SCENE, 3, 15, "background",
      "found an array of 2 elements"},
     {HEAD "\"lights\": {}}", SH_ERR_SCENE, 3, 11, "lights",
@@ -489,7 +489,7 @@ static const bad_case bad_cases[] = {
     {HEAD "\"medium\": {\"sigma_s\": [0.1, -0.5, 0], \"bounds\": {\"min\": "
           "[0, 0, 0], \"max\": [1, 1, 1]}}}",
      SH_ERR_SCENE, 3, 29, "medium.sigma_s[1]",
-     "expected a number >= 0, found the number -0.5"},
+     "expected a number in [0, 1e+30], found the number -0.5"},
     {HEAD "\"medium\": {\"sigma_s\": [1, 1, 1], \"phase\": {\"type\": "
           "\"henyey_greenstein\", \"g\": 1}, \"bounds\": {\"min\": [0, 0, "
           "0], \"max\": [1, 1, 1]}}}",
@@ -523,12 +523,12 @@ static const bad_case bad_cases[] = {
      "a spot light with a light_map needs outer_angle_deg < 90, found 100"},
     {HEAD "\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
           "\"intensity\": [1, -1, 1]}]}",
-     SH_ERR_SCENE, 3, 70, "lights[0].intensity[1]", "expected a number >= 0"},
+     SH_ERR_SCENE, 3, 70, "lights[0].intensity[1]", "expected a number in [0, 1e+30]"},
     {"{\"format\": \"shafts-scene\", \"version\": 1,\n"
      "\"camera\": {\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], "
      "\"fov_y_deg\": 180, \"width\": 8, \"height\": 6}}",
      SH_ERR_SCENE, 2, 70, "camera.fov_y_deg",
-     "expected a number in (0, 180), found the number 180"},
+     "expected a number in [1e-06, 180), found the number 180"},
     {"{\"format\": \"shafts-scene\", \"version\": 1,\n"
      "\"camera\": {\"position\": [0, 0, 5], \"look_at\": [0, 0, 0], "
      "\"fov_y_deg\": 40, \"width\": 0, \"height\": 6}}",

@@ -41,6 +41,13 @@ run_bad "--backend vulkan" "$dir/good.json" -o "$dir/x.exr" --backend vulkan
 run_bad "unknown option" "$dir/good.json" -o "$dir/x.exr" --bogus
 run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 bad_scenes_refused "$tool" "$dir/good.json"
+# A finite double that is no float (a camera 1e39 away) never becomes a
+# shader literal or a uniform: a clear error, not a shader that fails to
+# compile.
+sed 's/"position": \[0, 1, 5\]/"position": [0, 1, 1e39]/' "$dir/good.json" >"$dir/far.json"
+"$tool" "$dir/far.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "camera at 1e39" 2 $?
+grep -q "not a finite single-precision number" "$dir/err" && ! grep -q "compile" "$dir/err" \
+  || { echo "FAIL: non-finite parameter message: $(cat "$dir/err")"; fail=1; }
 
 "$tool" "$dir/good.json" -o "$dir/a.exr" -o "$dir/a.png" --stats "$dir/a.json" -q
 check "good render" 0 $?

@@ -1,6 +1,7 @@
 #include "gs_program.h"
 #include "gs_program_cache.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,10 +66,12 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
     char log[700];
     glGetShaderInfoLog(sh, sizeof log, NULL, log);
     glDeleteShader(sh);
+    /* The driver's reason first: the defines can be long, and a message
+     * has a bounded length. */
     return sh_error_set(err, SH_ERR_DEVICE,
-                        "the shader %s (with common.glsl and \"%s\") does not "
-                        "compile: %s",
-                        src->name, defines, log);
+                        "the shader %s does not compile: %s (with "
+                        "common.glsl and \"%.300s\")",
+                        src->name, log, defines);
   }
   *out = sh;
   return SH_OK;
@@ -210,6 +213,7 @@ void gs__params_reset(gs__params *p, int bake) {
   p->len = 0;
   p->n = 0;
   p->nomem = 0;
+  p->nonfinite[0] = '\0';
   if (p->text) p->text[0] = '\0';
 }
 
@@ -248,6 +252,12 @@ static const char *const TYPES[17] = {NULL, "float", "vec2", "vec3", "vec4",
 
 static void param(gs__params *p, const char *name, int kind, const float *v) {
   char line[1024];
+  for (int i = 0; i < kind; i++)
+    if (!isfinite(v[i])) {
+      if (!p->nonfinite[0])
+        snprintf(p->nonfinite, sizeof p->nonfinite, "%s", name);
+      return;
+    }
   if (p->bake) {
     /* GLSL matrices are built column by column. */
     int n = snprintf(line, sizeof line, "const %s %s = %s(", TYPES[kind], name, TYPES[kind]);
@@ -310,6 +320,13 @@ sh_status gs__program_use(gs__programs *c, const gs__glsl *vs,
                           const gs__glsl *fs, gs__params *p, GLuint *out,
                           sh_error *err) {
   if (p->nomem) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  if (p->nonfinite[0])
+    return sh_error_set(err, SH_ERR_SCENE,
+                        "the scene gives the shader parameter %s a value that "
+                        "is not a finite single-precision number (beyond "
+                        "3.4e38 or not a number): scale the scene's "
+                        "quantities down",
+                        p->nonfinite);
   sh_status st = gs__program_get(c, vs, fs, p->text ? p->text : "", out, err);
   if (st != SH_OK) return st;
   glUseProgram(*out);

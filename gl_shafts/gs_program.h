@@ -75,6 +75,9 @@ typedef struct gs__params {
   gs__param_value *value; /* uniforms to set (not baked) */
   int n, nvcap;
   int nomem;
+  /* The first parameter whose value is not a finite float (empty if none):
+   * such a value is never written into a shader nor set as a uniform. */
+  char nonfinite[64];
 } gs__params;
 
 /* Empties the block (keeping its memory) and sets whether it bakes. */

@@ -73,8 +73,16 @@ basic_scene() { # file, width, height, light (JSON), more shapes, more keys
 JSON
 }
 POINT_LIGHT='{"type": "point", "position": [0, 2, 0], "intensity": [5, 5, 5]}'
-# A misspelled key (with its place and a suggestion) and a truncated file
-# are refused with 2, and nothing is left behind.
+# A number no renderer can hold, put into the good scene by a sed
+# expression, is refused with 2 and a located message naming the key.
+huge_refused() { # tool, good scene, sed expression, key (a regex)
+  sed "$3" "$2" >"$dir/huge.json"
+  "$1" "$dir/huge.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "huge value $4" 2 $?
+  grep -q "huge.json:[0-9]*:[0-9]*: $4" "$dir/err" \
+    || { echo "FAIL: huge-value message: $(cat "$dir/err")"; fail=1; }
+}
+# A misspelled key (with its place and a suggestion), a truncated file and
+# numbers out of range are refused with 2, and nothing is left behind.
 bad_scenes_refused() { # tool, good scene (basic_scene's: the light on line 6)
   sed 's/"intensity": \[5, 5, 5\]/"intensty": [5, 5, 5]/' "$2" >"$dir/typo.json"
   printf '{"format": "shafts-scene", "version": 1, "camera": {' >"$dir/truncated.json"
@@ -82,6 +90,11 @@ bad_scenes_refused() { # tool, good scene (basic_scene's: the light on line 6)
   grep -q "typo.json:6:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \
     || { echo "FAIL: misspelled-key message: $(cat "$dir/err")"; fail=1; }
   "$1" "$dir/truncated.json" -o "$dir/x.exr" -q 2>/dev/null; check "truncated" 2 $?
+  # Numbers that are valid JSON but that no renderer can hold: a located
+  # error naming the key (issue 11, non-finite and out-of-range values).
+  huge_refused "$1" "$2" 's/"intensity": \[5, 5, 5\]/"intensity": [1e300, 5, 5]/' 'lights\[0\]\.intensity\[0\]'
+  huge_refused "$1" "$2" 's/"sigma_s": \[0.1, 0.1, 0.1\]/"sigma_s": [1.7e308, 0.1, 0.1]/' 'medium\.sigma_s\[0\]'
+  huge_refused "$1" "$2" 's/"fov_y_deg": 45/"fov_y_deg": 1e-300/' 'camera\.fov_y_deg'
   [ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
   ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
 }
