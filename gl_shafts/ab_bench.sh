@@ -5,8 +5,10 @@
 # reference) from build A and build B in turn, the order swapped every
 # round so that both see the same machine load and neither always goes
 # first. Prints, per scene, the median over the rounds of each build's
-# median warm frame, B / A, and B's split of its frame (shadow maps,
-# surfaces, lattice, sweep, read-back), as a Markdown table.
+# median warm frame, the median of the rounds' ratios B / A (each round's
+# two runs saw about the same load), and A's and B's split of their last
+# round's median frame (shadow maps and light volumes, surfaces, lattice,
+# sweep, read-back), as a Markdown table.
 #
 #   gl_shafts/ab_bench.sh --a BUILD_DIR --b BUILD_DIR [--rounds N] [--frames N]
 #                         [--size W H] [--backend auto|egl|osmesa]
@@ -36,8 +38,8 @@ done
 echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
      "$(date -u +%Y-%m-%dT%H:%MZ); $rounds rounds of $frames frames, ${w}x${h}"
 echo
-echo "| scene | A ms | B ms | B / A | B: shadow / surface / lattice / sweep / read-back ms |"
-echo "|---|---:|---:|---:|---|"
+echo "| scene | A ms | B ms | B / A | A: shadow / surface / lattice / sweep / read-back ms | B: the same |"
+echo "|---|---:|---:|---:|---|---|"
 # One bench row's median frame (column 9, "best (median)") and split (13).
 row() {
   "$1/gl_shafts/gl_shafts_bench" --size "$w" "$h" --frames "$frames" --ref-spp 0 \
@@ -46,13 +48,14 @@ row() {
 }
 median() { sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 for s in teapot_spot stage_5spots mountains_sun stained_glass; do
-  scene=$root/scenes/$s.json ta=() tb=() split=''
+  scene=$root/scenes/$s.json ta=() tb=() q=() sa='' sb=''
   for ((i = 0; i < rounds; i++)); do
     if ((i % 2 == 0)); then ra=$(row "$a" "$scene"); rb=$(row "$b" "$scene")
     else rb=$(row "$b" "$scene"); ra=$(row "$a" "$scene"); fi
-    ta+=("${ra%%|*}") tb+=("${rb%%|*}") split=${rb#*|}
+    ta+=("${ra%%|*}") tb+=("${rb%%|*}") sa=${ra#*|} sb=${rb#*|}
+    q+=("$(awk -v x="${rb%%|*}" -v y="${ra%%|*}" 'BEGIN { print x / y }')")
   done
   ma=$(printf '%s\n' "${ta[@]}" | median) mb=$(printf '%s\n' "${tb[@]}" | median)
-  printf '| %s | %s | %s | %.2f |%s|\n' "$s.json" "$ma" "$mb" \
-    "$(awk -v x="$mb" -v y="$ma" 'BEGIN { print x / y }')" "$split"
+  printf '| %s | %s | %s | %.2f |%s|%s|\n' "$s.json" "$ma" "$mb" \
+    "$(printf '%s\n' "${q[@]}" | median)" "$sa" "$sb"
 done
