@@ -40,10 +40,10 @@ test-asan: bootstrap
 	cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
 
 validate: build
-	python3 validation/validate.py --quick --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
+	python3 -m validation.validate --quick --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
 
 validate-full: build
-	python3 validation/validate.py --full --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
+	python3 -m validation.validate --full --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-asan

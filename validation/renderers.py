@@ -23,7 +23,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from runs import RunFailed, command, file_fingerprint
+from .runs import RunFailed, command, file_fingerprint
 
 HERE = Path(__file__).resolve().parent
 

@@ -13,7 +13,7 @@ import html
 import os
 from pathlib import Path
 
-from metrics import fmt_percent, fmt_seconds
+from .metrics import fmt_percent, fmt_seconds
 
 THRESHOLDS = (0.01, 0.02, 0.05)
 
@@ -262,7 +262,7 @@ def _hard_section(hc, results, base):
         out.append("<p>Not run (--no-hard-cases).</p>")
         return out
     out.append("<p>Generated scenes that push single scattering where it is hard "
-               "(validation/hard_cases.py). Every rendering must hold no NaN, infinite or "
+               "(validation/hard/). Every rendering must hold no NaN, infinite or "
                "negative value anywhere; its error against the reference (lmm_tracer, %d spp), "
                "with the pixels next to a light in view masked out, must stay within the bound "
                "stated for the renderer and case; invariant pairs must agree. Renderers: %s.</p>"

@@ -19,7 +19,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from scenes import write_atomic
+from .scenes import write_atomic
 
 # Bump when the meaning of a cached result changes (what the adapters
 # record, how they time); every run is then redone.

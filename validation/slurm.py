@@ -30,16 +30,19 @@ import json
 import math
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import time
 from collections import OrderedDict
 from pathlib import Path
 
-from scenes import write_atomic
+from .scenes import write_atomic
 
 HERE = Path(__file__).resolve().parent
-TASK = HERE / "slurm_task.py"
+# The package the task runs (python3 -m validation.slurm_task) is
+# imported from the source tree that holds validation/.
+PACKAGE_ROOT = HERE.parent
 # Slurm's default MaxArraySize is 1001: array indices stay below 1000.
 MAX_ARRAY = 1000
 NO_CACHE, MISMATCH = 3, 4
@@ -180,7 +183,9 @@ class SlurmExecutor:
         script = sweep / "task.sh"
         setup = Path(self.setup).read_text() if self.setup else ""
         write_atomic(script, "#!/bin/bash\n# One render of a validation sweep "
-                     "(validation/slurm.py).\n%s\nexec python3 %s \"$@\"\n" % (setup, TASK))
+                     "(validation/slurm.py).\n%s\nexport PYTHONPATH=%s${PYTHONPATH:+:$PYTHONPATH}\n"
+                     "exec python3 -m validation.slurm_task \"$@\"\n"
+                     % (setup, shlex.quote(str(PACKAGE_ROOT))))
         script.chmod(0o755)
 
         arrays = self._arrays(todo.values(), header, sweep)

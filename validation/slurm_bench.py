@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """What the Slurm executor costs per task, against the local executor.
 
-  slurm_bench.py [--build-dir build] [--runs N] [--spp S] [--size WxH]
+  python3 -m validation.slurm_bench [--build-dir build] [--runs N] [--spp S] [--size WxH]
 
 Renders N distinct runs (lmm_tracer's reference mode at S spp, seeds 1 to
 N, on the hard cases' base scene at a small size) three times into fresh
@@ -23,14 +22,12 @@ import tempfile
 import time
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
+from . import renderers, slurm
+from .hard import cases as hard_cases
+from .runs import LocalExecutor, RunCache, plan_run
+from .scenes import prepare_data
 
-import hard_cases  # noqa: E402
-import renderers  # noqa: E402
-import slurm  # noqa: E402
-from runs import LocalExecutor, RunCache, plan_run  # noqa: E402
-from scenes import prepare_data  # noqa: E402
+HERE = Path(__file__).resolve().parent
 
 ROOT = HERE.parent
 

@@ -1,8 +1,12 @@
-#!/usr/bin/env python3
 """What one task of the Slurm executor's job arrays runs (slurm.py).
 
-  slurm_task.py MANIFEST           render the run at index $SLURM_ARRAY_TASK_ID
-  slurm_task.py --probe MANIFEST   check what every task needs, on this node
+  python3 -m validation.slurm_task MANIFEST          render the run at index
+                                                    $SLURM_ARRAY_TASK_ID
+  python3 -m validation.slurm_task --probe MANIFEST  check what every task
+                                                    needs, on this node
+
+(with the source tree that holds validation/ on PYTHONPATH, as the
+executor's task.sh sets it)
 
 A manifest (written by the executor into CACHE/slurm/SWEEP/) holds the
 sweep's header (source tree, build tree, mode, timeout, cache directory,
@@ -27,11 +31,8 @@ import socket
 import sys
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-
-import renderers  # noqa: E402
-from runs import RunCache, execute  # noqa: E402
+from . import renderers
+from .runs import RunCache, execute
 
 NO_CACHE, MISMATCH = 3, 4
 

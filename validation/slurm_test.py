@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """The Slurm executor end to end, on a single-node Slurm of its own.
 
 Starts tools/slurm_local.sh (its own state directory and ports), renders a
@@ -27,15 +26,14 @@ import tempfile
 import time
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
+from .hard import cases as hard_cases
 
-import hard_cases  # noqa: E402
+HERE = Path(__file__).resolve().parent
 
 ROOT = Path(os.environ.get("SHAFTS_SOURCE_DIR", HERE.parent))
 BUILD = Path(os.environ.get("SHAFTS_BINARY_DIR", ROOT / "build"))
 CLUSTER = BUILD / "slurm-test-cluster"
-ENV = dict(os.environ, SHAFTS_SLURM_DIR=str(CLUSTER),
+ENV = dict(os.environ, SHAFTS_SLURM_DIR=str(CLUSTER), PYTHONPATH=str(HERE.parent),
            SLURM_CONF=str(CLUSTER / "slurm.conf"))
 failures = []
 
@@ -53,7 +51,7 @@ def slurm_local(cmd):
 
 
 def validate(tmp, name, *extra):
-    return [sys.executable, str(HERE / "validate.py"), "--quick", "--report", str(tmp / name),
+    return [sys.executable, "-m", "validation.validate", "--quick", "--report", str(tmp / name),
             "--build-dir", str(BUILD), "--scenes", str(tmp / "spot_medium.json"),
             str(tmp / "spot_clear.json"), "--renderers", "lmm_tracer,gl_shafts",
             "--ref-spp", "16", "--scale", "1", "--no-hard-cases"] + list(extra)

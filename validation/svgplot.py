@@ -11,7 +11,7 @@ external resources, so the report works offline; every point has a tooltip
 import math
 from xml.sax.saxutils import escape
 
-from metrics import pareto_front
+from .metrics import pareto_front
 
 WIDTH, HEIGHT = 680, 420
 LEFT, RIGHT, TOP, BOTTOM = 70, 180, 34, 52

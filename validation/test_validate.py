@@ -1,8 +1,8 @@
-#!/usr/bin/env python3
 """Unit tests of the validation scripts' own logic (no renderer needed):
 the Pareto front and time-to-error, the scene content key, the run cache's
 resume behaviour, the hard cases' scene scaling and projection, the SVG
-plot and the report pages. Run: python3 validation/test_validate.py."""
+plot and the report pages. Run from the source tree:
+python3 -m validation.test_validate."""
 
 import json
 import math
@@ -13,17 +13,17 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
+from . import renderers, report, slurm
+from .hard import bounds as hard_bounds
+from .hard import cases as hard_cases
+from .hard import runner as hard_runner
+from .metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach
+from .runs import RunCache, RunFailed, execute, run_key
+from .scenes import light_mask, prepare_data, project, referenced_files, scaled_size
+from .svgplot import speed_error_svg
 
-import hard_cases  # noqa: E402
-import renderers  # noqa: E402
-import report  # noqa: E402
-import slurm  # noqa: E402
-from metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach  # noqa: E402
-from runs import RunCache, RunFailed, execute, run_key  # noqa: E402
-from scenes import prepare_data, referenced_files, scaled_size  # noqa: E402
-from svgplot import speed_error_svg  # noqa: E402
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
 
 
 class MetricsTest(unittest.TestCase):
@@ -141,17 +141,17 @@ class HardCasesTest(unittest.TestCase):
         scene["camera"]["look_at"] = [0.0, 1.8, 0.0]
         scene["camera"]["position"] = [0.0, 1.8, 7.0]
         scene["lights"] = [{"type": "point", "position": [0.0, 1.8, 0.0]}]
-        x, y = hard_cases.project(scene["camera"], [0.0, 1.8, 0.0])
+        x, y = project(scene["camera"], [0.0, 1.8, 0.0])
         self.assertAlmostEqual(x, 32.5)
         self.assertAlmostEqual(y, 24.5)
-        rects = hard_cases.light_mask(scene, radius=1.5)
+        rects = light_mask(scene, radius=1.5)
         self.assertEqual(rects, [(31, 23, 3, 3)])
-        self.assertIsNone(hard_cases.project(scene["camera"], [0.0, 1.8, 9.0]))
+        self.assertIsNone(project(scene["camera"], [0.0, 1.8, 9.0]))
 
     def test_every_case_builds_a_valid_looking_scene(self):
         names = set()
         for case in hard_cases.CASES:
-            w, h = hard_cases.case_size(case, "quick")
+            w, h = hard_runner.case_size(case, "quick")
             s = case.build(w, h)
             self.assertEqual(s["format"], "shafts-scene")
             self.assertNotIn(case.name, names)
@@ -172,13 +172,13 @@ class HardCasesTest(unittest.TestCase):
                                          rel_tol=1e-9))
 
     def test_bounds(self):
-        self.assertEqual(hard_cases.bound_for("lmm_tracer", "user", "dense", "quick"), 0.25)
-        self.assertEqual(hard_cases.bound_for("lmm_tracer", "user", "dense", "full"), 0.05)
-        self.assertEqual(hard_cases.bound_for("gl_shafts", "user", "dense", "quick"), 0.02)
-        self.assertEqual(hard_cases.bound_for("gl_shafts", "case", "base", "quick"),
-                         hard_cases.bound_for("gl_shafts", "user", "base", "quick"))
-        self.assertIsNone(hard_cases.bound_for("eevee", "user", "base", "full"))
-        self.assertIsNone(hard_cases.bound_for("unknown", "user", "base", "full"))
+        self.assertEqual(hard_bounds.bound_for("lmm_tracer", "user", "dense", "quick"), 0.25)
+        self.assertEqual(hard_bounds.bound_for("lmm_tracer", "user", "dense", "full"), 0.05)
+        self.assertEqual(hard_bounds.bound_for("gl_shafts", "user", "dense", "quick"), 0.02)
+        self.assertEqual(hard_bounds.bound_for("gl_shafts", "case", "base", "quick"),
+                         hard_bounds.bound_for("gl_shafts", "user", "base", "quick"))
+        self.assertIsNone(hard_bounds.bound_for("eevee", "user", "base", "full"))
+        self.assertIsNone(hard_bounds.bound_for("unknown", "user", "base", "full"))
 
 
 def fake_results(tmp):
@@ -259,8 +259,8 @@ class SlurmPartsTest(unittest.TestCase):
         self.assertEqual(slurm._indices("1,3-4"), [1, 3, 4])
 
     def test_task_that_cannot_see_the_cache_fails_fast(self):
-        p = subprocess.run([sys.executable, str(HERE / "slurm_task.py"), "--probe",
-                            "/nonexistent/cache/slurm/sweep/array-0.json"],
+        p = subprocess.run([sys.executable, "-m", "validation.slurm_task", "--probe",
+                            "/nonexistent/cache/slurm/sweep/array-0.json"], cwd=ROOT,
                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.assertEqual(p.returncode, 3)
         self.assertIn("--cache-dir", p.stderr)

@@ -1,8 +1,7 @@
-#!/usr/bin/env python3
 """Cross-renderer validation: every scene, every renderer, against the
 converged reference, in error and in time.
 
-  validate.py [--quick | --full] --report DIR [--scenes DIR_OR_FILE ...]
+  python3 -m validation.validate [--quick | --full] --report DIR [--scenes DIR_OR_FILE ...]
               [--cache DIR] [--build-dir DIR] [--renderers a,b,...]
               [--scale F] [--ref-spp N] [--no-hard-cases] [--retry-failed]
               [--executor local|slurm] [--partition P] [--account A] ...
@@ -12,7 +11,7 @@ high spp), then each renderer's sweep (renderers.py: gl_shafts over planes,
 lattice and --xi; lmm_tracer over spp and modes; POV-Ray over media
 intervals; Cycles over samples; EEVEE over volumetric settings), each run
 timed and compared with the reference (shafts_compare). Then the hard-case
-stability suite (hard_cases.py). Writes DIR/index.html, DIR/summary.md and
+stability suite (validation/hard/). Writes DIR/index.html, DIR/summary.md and
 DIR/results.json; runs are cached (runs.py) so a re-run renders only what
 changed and an interrupted run resumes. A renderer that is missing or fails
 is skipped with a note in the report. With --executor slurm every run the
@@ -38,20 +37,17 @@ import tempfile
 import time
 from pathlib import Path
 
+import subprocess
+
+from . import renderers, report, slurm
+from .hard import runner as hard_cases
+from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,
+                      time_to_reach)
+from .runs import LocalExecutor, RunCache, plan_run
+from .scenes import find_scenes, light_mask, prepare_file, write_atomic
+from .svgplot import speed_error_svg
+
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-
-import hard_cases  # noqa: E402
-import renderers  # noqa: E402
-import report  # noqa: E402
-import slurm  # noqa: E402
-import subprocess  # noqa: E402
-
-from metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,  # noqa: E402
-                     time_to_reach)
-from runs import LocalExecutor, RunCache, plan_run  # noqa: E402
-from scenes import find_scenes, light_mask, prepare_file, write_atomic  # noqa: E402
-from svgplot import speed_error_svg  # noqa: E402
 
 MODES = {
     # Image scale, reference spp, and the renderers of the hard cases.
