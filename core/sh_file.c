@@ -52,6 +52,17 @@ sh_status sh_file_readable(const char *path, long long *size, sh_error *err) {
   return SH_OK;
 }
 
+sh_status sh__file_load_begin(const char *fn, const char *what, void *out,
+                              size_t out_size, const char *path,
+                              long long *size, sh_error *err) {
+  if (!out)
+    return sh_error_set(err, SH_ERR_ARG, "%s was given no %s", fn, what);
+  memset(out, 0, out_size);
+  if (!path || !*path)
+    return sh_error_set(err, SH_ERR_ARG, "%s was given no path", fn);
+  return sh_file_readable(path, size, err);
+}
+
 void sh_file_extension(const char *path, char *buf, size_t size) {
   const char *dot = strrchr(path, '.');
   const char *slash = strrchr(path, '/');

@@ -22,6 +22,14 @@ sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
  * otherwise. Its size in bytes goes to *size when size is not NULL. */
 sh_status sh_file_readable(const char *path, long long *size, sh_error *err);
 
+/* The checks every loader makes first: `fn` (the public call, named in the
+ * message) was given a result `out` of out_size bytes, which is zeroed, and
+ * a non-empty path naming a readable file (sh_file_readable, its size to
+ * *size when size is not NULL). SH_ERR_ARG or SH_ERR_IO otherwise. */
+sh_status sh__file_load_begin(const char *fn, const char *what, void *out,
+                              size_t out_size, const char *path,
+                              long long *size, sh_error *err);
+
 /* The extension of `path` after its last dot, lower-cased into buf (empty
  * if there is none). */
 void sh_file_extension(const char *path, char *buf, size_t size);

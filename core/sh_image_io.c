@@ -84,13 +84,9 @@ static sh_status sh__decode_file(const char *path, sh__decoded *d,
 
 static sh_status sh__read(const char *path, sh_image *img, int decode,
                           sh_error *err) {
-  if (!img)
-    return sh_error_set(err, SH_ERR_ARG, "sh_image_read was given no image");
-  memset(img, 0, sizeof *img);
-  if (!path || !*path)
-    return sh_error_set(err, SH_ERR_ARG, "sh_image_read was given no path");
   long long size = 0;
-  sh_status s = sh_file_readable(path, &size, err);
+  sh_status s = sh__file_load_begin("sh_image_read", "image", img, sizeof *img,
+                                    path, &size, err);
   if (s != SH_OK)
     return s;
   if (size == 0)

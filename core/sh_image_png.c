@@ -28,6 +28,51 @@ static void sh__png_on_warning(png_structp png, png_const_charp msg) {
   (void)msg;
 }
 
+/* A PNG file being read or written: the file, libpng's structures and the
+ * message the error handler keeps. */
+typedef struct sh__png_file {
+  FILE *f;
+  int write;
+  png_structp png;
+  png_infop info;
+  sh__png_msg msg;
+} sh__png_file;
+
+/* Frees libpng's structures and closes the file: fclose's result (a write
+ * whose last bytes did not reach the disk fails here). */
+static int sh__png_close(sh__png_file *p) {
+  png_structp *png = p->png ? &p->png : NULL;
+  png_infop *info = p->info ? &p->info : NULL;
+  if (p->write)
+    png_destroy_write_struct(png, info);
+  else
+    png_destroy_read_struct(png, info, NULL);
+  return fclose(p->f);
+}
+
+/* Opens open_path to read or to write (named `path` in messages: SH_ERR_IO
+ * when it does not open) and makes libpng's structures with the handlers
+ * above (SH_ERR_NOMEM). */
+static sh_status sh__png_open(sh__png_file *p, const char *open_path,
+                              const char *path, int write, sh_error *err) {
+  memset(p, 0, sizeof *p);
+  p->write = write;
+  if (!(p->f = fopen(open_path, write ? "wb" : "rb")))
+    return sh_error_set(err, SH_ERR_IO,
+                        write ? "cannot write '%s'" : "cannot open '%s'", path);
+  p->png = write ? png_create_write_struct(PNG_LIBPNG_VER_STRING, &p->msg,
+                                           sh__png_on_error, sh__png_on_warning)
+                 : png_create_read_struct(PNG_LIBPNG_VER_STRING, &p->msg,
+                                          sh__png_on_error, sh__png_on_warning);
+  p->info = p->png ? png_create_info_struct(p->png) : NULL;
+  if (!p->info) {
+    sh__png_close(p);
+    return sh_error_set(err, SH_ERR_NOMEM, "cannot %s '%s': out of memory",
+                        write ? "write" : "read image", path);
+  }
+  return SH_OK;
+}
+
 /* The curve the file says its values are stored with: an sRGB chunk, else
  * a gAMA chunk (its exponent rounded to hundredths, as OpenImageIO does),
  * else sRGB. */
@@ -48,25 +93,23 @@ static sh__transfer sh__png_transfer(png_structp png, png_infop info,
 }
 
 sh_status sh__png_read(const char *path, sh__decoded *out, sh_error *err) {
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return sh_error_set(err, SH_ERR_IO, "cannot open '%s'", path);
-  sh__png_msg msg = {""};
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &msg,
-                                           sh__png_on_error, sh__png_on_warning);
-  png_infop info = png ? png_create_info_struct(png) : NULL;
   /* Set before the jump may happen, read after it: volatile. */
   unsigned char *volatile pixels = NULL;
   png_bytep *volatile rows = NULL;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(png ? &png : NULL, info ? &info : NULL, NULL);
-    fclose(f);
+  sh__png_file p;
+  sh_status st = sh__png_open(&p, path, path, 0, err);
+  if (st != SH_OK)
+    return st;
+  png_structp png = p.png;
+  png_infop info = p.info;
+  if (setjmp(png_jmpbuf(png))) {
+    sh__png_close(&p);
     free(pixels);
     free(rows);
     return sh_error_set(err, SH_ERR_IMAGE, "cannot read image '%s': %s", path,
-                        msg.text[0] ? msg.text : "out of memory");
+                        p.msg.text);
   }
-  png_init_io(png, f);
+  png_init_io(png, p.f);
   png_read_info(png, info);
   /* Palette to RGB, grey below 8 bits to 8, tRNS to alpha; 16-bit samples
    * in the machine's byte order. */
@@ -107,8 +150,7 @@ sh_status sh__png_read(const char *path, sh__decoded *out, sh_error *err) {
                       : rows[y][i] / 255.0f;
         values[((size_t)y * w + x) * keep + c] = v;
       }
-  png_destroy_read_struct(&png, &info, NULL);
-  fclose(f);
+  sh__png_close(&p);
   free(pixels);
   free(rows);
   out->width = (int)w;
@@ -123,43 +165,38 @@ sh_status sh__png_read(const char *path, sh__decoded *out, sh_error *err) {
 sh_status sh__png_write(const char *tmp_path, const char *path, int width,
                         int height, const unsigned char *rgb,
                         const char *const *attrs, sh_error *err) {
-  FILE *f = fopen(tmp_path, "wb");
-  if (!f)
-    return sh_error_set(err, SH_ERR_IO, "cannot write '%s'", path);
-  sh__png_msg msg = {""};
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &msg,
-                                            sh__png_on_error, sh__png_on_warning);
-  png_infop info = png ? png_create_info_struct(png) : NULL;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(png ? &png : NULL, info ? &info : NULL);
-    fclose(f);
+  sh__png_file p;
+  sh_status st = sh__png_open(&p, tmp_path, path, 1, err);
+  if (st != SH_OK)
+    return st;
+  if (setjmp(png_jmpbuf(p.png))) {
+    sh__png_close(&p);
     return sh_error_set(err, SH_ERR_IMAGE, "cannot write '%s': %s", path,
-                        msg.text[0] ? msg.text : "out of memory");
+                        p.msg.text);
   }
-  png_init_io(png, f);
-  png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8,
+  png_init_io(p.png, p.f);
+  png_set_IHDR(p.png, p.info, (png_uint_32)width, (png_uint_32)height, 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_set_sRGB_gAMA_and_cHRM(p.png, p.info, PNG_sRGB_INTENT_PERCEPTUAL);
   /* zlib level 3 with the Sub filter on every row: half the CPU time of
    * libpng's defaults (level 6, adaptive filters) for files 8% larger
    * (gl_shafts/cli_bench.sh's PNG row; docs/gl_shafts.md). */
-  png_set_compression_level(png, 3);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+  png_set_compression_level(p.png, 3);
+  png_set_filter(p.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   for (int i = 0; attrs && attrs[i] && attrs[i + 1]; i += 2) {
     png_text t;
     memset(&t, 0, sizeof t);
     t.compression = PNG_TEXT_COMPRESSION_NONE;
     t.key = (png_charp)attrs[i];
     t.text = (png_charp)attrs[i + 1];
-    png_set_text(png, info, &t, 1);
+    png_set_text(p.png, p.info, &t, 1);
   }
-  png_write_info(png, info);
+  png_write_info(p.png, p.info);
   for (int y = 0; y < height; y++)
-    png_write_row(png, rgb + (size_t)y * width * 3);
-  png_write_end(png, NULL);
-  png_destroy_write_struct(&png, &info);
-  if (fclose(f) != 0)
+    png_write_row(p.png, rgb + (size_t)y * width * 3);
+  png_write_end(p.png, NULL);
+  if (sh__png_close(&p) != 0)
     return sh_error_set(err, SH_ERR_IO, "cannot write '%s': the file could "
                         "not be completed", path);
   return SH_OK;

@@ -17,19 +17,17 @@ sh_mat4 sh_mat4_mul(sh_mat4 a, sh_mat4 b) {
 }
 
 sh_mat4 sh_mat4_translate(sh_vec3 t) {
-  sh_mat4 r = sh_mat4_identity();
-  r.m[0][3] = t.x;
-  r.m[1][3] = t.y;
-  r.m[2][3] = t.z;
-  return r;
+  return (sh_mat4){{{1, 0, 0, t.x},
+                    {0, 1, 0, t.y},
+                    {0, 0, 1, t.z},
+                    {0, 0, 0, 1}}};
 }
 
 sh_mat4 sh_mat4_scale(sh_vec3 s) {
-  sh_mat4 r = sh_mat4_identity();
-  r.m[0][0] = s.x;
-  r.m[1][1] = s.y;
-  r.m[2][2] = s.z;
-  return r;
+  return (sh_mat4){{{s.x, 0, 0, 0},
+                    {0, s.y, 0, 0},
+                    {0, 0, s.z, 0},
+                    {0, 0, 0, 1}}};
 }
 
 sh_mat4 sh_mat4_rotate(int axis, double deg) {

@@ -134,15 +134,10 @@ static char *dir_of(const char *path) {
 
 sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
                        sh_error *err) {
-  if (!mesh)
-    return sh_error_set(err, SH_ERR_ARG, "sh_mesh_load was given no mesh");
-  memset(mesh, 0, sizeof *mesh);
-  if (!path || !*path)
-    return sh_error_set(err, SH_ERR_ARG, "sh_mesh_load was given no path");
-
   /* assimp reports a missing file like any other failure: tell them apart
    * first. */
-  sh_status rs = sh_file_readable(path, NULL, err);
+  sh_status rs = sh__file_load_begin("sh_mesh_load", "mesh", mesh, sizeof *mesh,
+                                     path, NULL, err);
   if (rs != SH_OK)
     return rs;
 

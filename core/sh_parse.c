@@ -131,33 +131,34 @@ sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   return SH_OK;
 }
 
-sh_status sh__parse_objects(sh__parser *p, json_t *root, const char *key,
-                            const char *what, size_t size,
-                            sh_status (*read_one)(sh__parser *p, json_t *o,
-                                                  void *item),
-                            void **items, int *count) {
+void *sh__parse_objects(sh__parser *p, json_t *root, const char *key,
+                        const char *what, size_t size,
+                        sh_status (*read_one)(sh__parser *p, json_t *o,
+                                              void *item),
+                        int *count, sh_status *st) {
   sh__pctx *c = &p->c;
   json_t *a;
-  sh_status st;
-  *items = NULL;
   *count = 0;
-  if ((st = sh__array(c, root, key, 0, &a)) || !a) return st;
+  if ((*st = sh__array(c, root, key, 0, &a)) || !a) return NULL;
   size_t n = json_array_size(a);
-  if (n == 0) return SH_OK;
+  if (n == 0) return NULL;
   char *base = n > INT_MAX / 2 ? NULL : calloc(n, size);
-  if (!base) return sh__fail_at(c, key, SH_ERR_NOMEM, "out of memory");
-  *items = base;
+  if (!base) {
+    *st = sh__fail_at(c, key, SH_ERR_NOMEM, "out of memory");
+    return NULL;
+  }
   *count = (int)n;
   sh__push_key(c, key);
   for (size_t i = 0; i < n; i++) {
     json_t *o = json_array_get(a, i);
     sh__push_index(c, (int)i);
-    if (!json_is_object(o)) return sh__wrong(c, o, what);
-    if ((st = read_one(p, o, base + i * size))) return st;
+    if (!json_is_object(o)) *st = sh__wrong(c, o, what);
+    else *st = read_one(p, o, base + i * size);
+    if (*st) return base;
     sh__pop(c);
   }
   sh__pop(c);
-  return SH_OK;
+  return base;
 }
 
 static sh_status parse_materials(sh__parser *p, json_t *root) {

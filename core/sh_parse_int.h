@@ -57,16 +57,16 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
 
 /* Reads the optional array member `key` of `root`, whose elements are
  * objects (`what` names one in the error otherwise: "a light"), into a new
- * zeroed array of `size`-byte items: *items and *count are set as soon as
- * it is allocated, also when an element then fails, so that the caller can
- * hand a part-read array to the scene that frees it. read_one reads one
- * element with the error path at it. NULL and 0 for an absent or empty
- * array. */
-sh_status sh__parse_objects(sh__parser *p, json_t *root, const char *key,
-                            const char *what, size_t size,
-                            sh_status (*read_one)(sh__parser *p, json_t *o,
-                                                  void *item),
-                            void **items, int *count);
+ * zeroed array of `size`-byte items, which it returns with its length in
+ * *count and the outcome in *st: the array comes back as soon as it is
+ * allocated, also when an element then fails, so that the caller can hand
+ * a part-read array to the scene that frees it. read_one reads one element
+ * with the error path at it. NULL and 0 for an absent or empty array. */
+void *sh__parse_objects(sh__parser *p, json_t *root, const char *key,
+                        const char *what, size_t size,
+                        sh_status (*read_one)(sh__parser *p, json_t *o,
+                                              void *item),
+                        int *count, sh_status *st);
 
 /* Read the "lights" and "shapes" arrays of the root object. Materials and
  * the camera must have been read already. */

@@ -112,7 +112,9 @@ static sh_status parse_light_map(sh__parser *p, json_t *o, sh_light *l,
   return SH_OK;
 }
 
-static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
+/* One element of the "lights" array (sh__parse_objects). */
+static sh_status parse_light(sh__parser *p, json_t *o, void *item) {
+  sh_light *l = item;
   static const char *const *const type_keys[] = {point_keys, spot_keys,
                                                  directional_keys};
   static const char *const what[] = {"a point light", "a spot light",
@@ -155,17 +157,10 @@ static sh_status parse_light(sh__parser *p, json_t *o, sh_light *l) {
   return SH_OK;
 }
 
-/* parse_light as sh__parse_objects calls it. */
-static sh_status read_light(sh__parser *p, json_t *o, void *item) {
-  return parse_light(p, o, item);
-}
-
 sh_status sh__parse_lights(sh__parser *p, json_t *root) {
+  sh_status st;
   sh_scene *s = p->scene;
-  void *items;
-  sh_status st = sh__parse_objects(p, root, "lights", "an object (a light)",
-                                   sizeof *s->lights, read_light, &items,
-                                   &s->nlights);
-  s->lights = items;
+  s->lights = sh__parse_objects(p, root, "lights", "an object (a light)",
+                             sizeof *s->lights, parse_light, &s->nlights, &st);
   return st;
 }

@@ -221,7 +221,9 @@ static sh_status parse_heightfield(sh__parser *p, json_t *o, sh_shape *sh) {
   return st;
 }
 
-static sh_status parse_shape(sh__parser *p, json_t *o, sh_shape *sh) {
+/* One element of the "shapes" array (sh__parse_objects). */
+static sh_status parse_shape(sh__parser *p, json_t *o, void *item) {
+  sh_shape *sh = item;
   static const char *const *const type_keys[] = {mesh_keys, sphere_keys,
                                                  box_keys,  cylinder_keys,
                                                  quad_keys, heightfield_keys};
@@ -270,17 +272,10 @@ static sh_status parse_shape(sh__parser *p, json_t *o, sh_shape *sh) {
   return SH_OK;
 }
 
-/* parse_shape as sh__parse_objects calls it. */
-static sh_status read_shape(sh__parser *p, json_t *o, void *item) {
-  return parse_shape(p, o, item);
-}
-
 sh_status sh__parse_shapes(sh__parser *p, json_t *root) {
+  sh_status st;
   sh_scene *s = p->scene;
-  void *items;
-  sh_status st = sh__parse_objects(p, root, "shapes", "an object (a shape)",
-                                   sizeof *s->shapes, read_shape, &items,
-                                   &s->nshapes);
-  s->shapes = items;
+  s->shapes = sh__parse_objects(p, root, "shapes", "an object (a shape)",
+                             sizeof *s->shapes, parse_shape, &s->nshapes, &st);
   return st;
 }

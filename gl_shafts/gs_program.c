@@ -44,6 +44,22 @@ int gs__program_source_parts(const gs__glsl *src, const char *defines, const cha
   return n;
 }
 
+/* Whether a shader's compile (status GL_COMPILE_STATUS) or a program's link
+ * (GL_LINK_STATUS) failed; if so, log holds the driver's reason. */
+static int failed(GLuint object, GLenum status, char *log, GLsizei size) {
+  GLint ok = 0;
+  if (status == GL_LINK_STATUS)
+    glGetProgramiv(object, status, &ok);
+  else
+    glGetShaderiv(object, status, &ok);
+  if (ok) return 0;
+  if (status == GL_LINK_STATUS)
+    glGetProgramInfoLog(object, size, NULL, log);
+  else
+    glGetShaderInfoLog(object, size, NULL, log);
+  return 1;
+}
+
 static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
                          GLuint *out, sh_error *err) {
   const char *parts[GS__SOURCE_PARTS_MAX], *bad = NULL;
@@ -60,11 +76,8 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
   if (!sh) return gs__gl_check("creating a shader", err);
   glShaderSource(sh, (GLsizei)nparts, parts, lens);
   glCompileShader(sh);
-  GLint ok = 0;
-  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[700];
-    glGetShaderInfoLog(sh, sizeof log, NULL, log);
+  char log[700];
+  if (failed(sh, GL_COMPILE_STATUS, log, sizeof log)) {
     glDeleteShader(sh);
     /* The driver's reason first: the defines can be long, and a message
      * has a bounded length. */
@@ -97,11 +110,8 @@ static sh_status build(const gs__glsl *vs, const gs__glsl *fs,
   glLinkProgram(prog);
   glDeleteShader(v);
   glDeleteShader(f);
-  GLint ok = 0;
-  glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[700];
-    glGetProgramInfoLog(prog, sizeof log, NULL, log);
+  char log[700];
+  if (failed(prog, GL_LINK_STATUS, log, sizeof log)) {
     glDeleteProgram(prog);
     return sh_error_set(err, SH_ERR_DEVICE,
                         "the shaders %s and %s (with \"%s\") do not link: %s",

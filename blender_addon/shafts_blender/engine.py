@@ -75,10 +75,15 @@ class _RedrawTimer:
 
 
 class ViewportEngine:
-    """What both engines do in the viewport; each says how to make its
-    worker (``_make_worker``), what settings need a new one
-    (``_settings``) and which settings hold its viewport divider
-    (``_viewport``)."""
+    """What both engines do, F12 and in the viewport; each names its kind
+    (``KIND``: final.render's renderer, and ``scene.shafts_<KIND>`` holds its
+    settings) and says how to make its worker (``_make_worker``) and what
+    settings need a new one (``_settings``)."""
+
+    KIND = None
+    bl_use_preview = False
+    bl_use_eevee_viewport = True
+    bl_use_shading_nodes_custom = False
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
@@ -97,6 +102,12 @@ class ViewportEngine:
         if worker is not None:
             worker.close()
 
+    def render(self, depsgraph):
+        final.render(self, depsgraph, self.KIND)
+
+    def _viewport(self, scene):
+        return getattr(scene, "shafts_" + self.KIND)
+
     def _full_export(self, depsgraph):
         from . import convert
         view, size = self._view
@@ -114,6 +125,13 @@ class ViewportEngine:
             self._worker.patch(patch)
         self._last_patch = patch
 
+    def _send_changes(self, depsgraph):
+        """The whole scene when the worker needs it again, else a patch."""
+        if self._worker.needs_rebuild:
+            self._full_export(depsgraph)
+        else:
+            self._send_patch(depsgraph)
+
     def view_update(self, context, depsgraph):
         try:
             self._view = view_of(context, self._viewport(depsgraph.scene).viewport_divider)
@@ -125,10 +143,8 @@ class ViewportEngine:
                 self._worker = self._make_worker(depsgraph.scene)
                 self._timer = _RedrawTimer(self)
                 self._full_export(depsgraph)
-            elif self._worker.needs_rebuild:
-                self._full_export(depsgraph)
             else:
-                self._send_patch(depsgraph)
+                self._send_changes(depsgraph)
         except Exception as e:
             self.update_stats("", "Shafts: " + describe(e))
             return
@@ -141,10 +157,7 @@ class ViewportEngine:
         if not same_view(view, self._view) or self._worker.needs_rebuild:
             self._view = view
             try:
-                if self._worker.needs_rebuild:
-                    self._full_export(depsgraph)
-                else:
-                    self._send_patch(depsgraph)
+                self._send_changes(depsgraph)
             except Exception as e:
                 self.update_stats("", "Shafts: " + describe(e))
             self._timer.start()
@@ -165,18 +178,10 @@ class ViewportEngine:
 class ShaftsSweepEngine(ViewportEngine, bpy.types.RenderEngine):
     bl_idname = "SHAFTS_SWEEP"
     bl_label = "Shafts Sweep"
-    bl_use_preview = False
-    bl_use_eevee_viewport = True
-    bl_use_shading_nodes_custom = False
-
-    def render(self, depsgraph):
-        final.render(self, depsgraph, "sweep")
+    KIND = "sweep"
 
     def _settings(self, scene):
         return sweep_options(scene.shafts_sweep)
-
-    def _viewport(self, scene):
-        return scene.shafts_sweep
 
     def _make_worker(self, scene):
         from .viewport import SweepWorker
@@ -191,15 +196,7 @@ class ShaftsSweepEngine(ViewportEngine, bpy.types.RenderEngine):
 class ShaftsTracerEngine(ViewportEngine, bpy.types.RenderEngine):
     bl_idname = "SHAFTS_TRACER"
     bl_label = "Shafts Tracer"
-    bl_use_preview = False
-    bl_use_eevee_viewport = True
-    bl_use_shading_nodes_custom = False
-
-    def render(self, depsgraph):
-        final.render(self, depsgraph, "tracer")
-
-    def _viewport(self, scene):
-        return scene.shafts_tracer
+    KIND = "tracer"
 
     def _settings(self, scene):
         name, arguments = tracer_arguments(scene.shafts_tracer)

@@ -38,16 +38,6 @@ def shared_panels():
     return found
 
 
-class ShaftsPanel:
-    bl_space_type = 'PROPERTIES'
-    bl_region_type = 'WINDOW'
-    COMPAT_ENGINES = ENGINES
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES
-
-
 def draw_groups(layout, settings, groups):
     """Draws settings as columns: groups of (heading or None, a function of
     the settings telling whether the group applies, or None, property
@@ -62,22 +52,43 @@ def draw_groups(layout, settings, groups):
             col.prop(settings, name)
 
 
+class ShaftsPanel:
+    """A panel of the add-on's settings: the property group ``SETTINGS`` of
+    the context's ``DATA`` (the scene, the light, the material), drawn as
+    ``GROUPS`` (draw_groups); shown when one of our engines renders and the
+    context has that data."""
+    bl_space_type = 'PROPERTIES'
+    bl_region_type = 'WINDOW'
+    COMPAT_ENGINES = ENGINES
+    DATA = "scene"
+    SETTINGS = "shafts"
+    GROUPS = ()
+
+    @classmethod
+    def poll(cls, context):
+        return (context.engine in cls.COMPAT_ENGINES
+                and getattr(context, cls.DATA, None) is not None)
+
+    def draw(self, context):
+        data = getattr(context, self.DATA)
+        draw_groups(self.layout, getattr(data, self.SETTINGS), self.GROUPS)
+
+
 class SHAFTS_PT_sweep(ShaftsPanel, bpy.types.Panel):
     bl_label = "Plane Sweep"
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_SWEEP"}
+    SETTINGS = "shafts_sweep"
     GROUPS = ((None, None, ("planes", "lattice", "xi", "jitter", "viewport_divider")),
               ("Sub-Sampling", None, ("sub_angle_deg", "sub_texels")),
               ("Maps", None, ("shadow_map_res", "light_map_res")))
-
-    def draw(self, context):
-        draw_groups(self.layout, context.scene.shafts_sweep, self.GROUPS)
 
 
 class SHAFTS_PT_tracer(ShaftsPanel, bpy.types.Panel):
     bl_label = "Tracer"
     bl_context = "render"
     COMPAT_ENGINES = {"SHAFTS_TRACER"}
+    SETTINGS = "shafts_tracer"
     GROUPS = ((None, None, ("mode",)),
               (None, None, ("spp", "viewport_spp", "viewport_divider", "max_depth", "seed",
                             "threads")),
@@ -87,33 +98,19 @@ class SHAFTS_PT_tracer(ShaftsPanel, bpy.types.Panel):
               (None, lambda s: s.mode == 'LMM' and s.scheme == 'REFRACT_BOTH', ("refined",)),
               (None, lambda s: s.mode == 'LMM', ("mesh_step", "radius", "volume")))
 
-    def draw(self, context):
-        draw_groups(self.layout, context.scene.shafts_tracer, self.GROUPS)
-
 
 class SHAFTS_PT_light(ShaftsPanel, bpy.types.Panel):
     bl_label = "Shafts"
     bl_context = "data"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.light is not None
-
-    def draw(self, context):
-        draw_groups(self.layout, context.light.shafts, ((None, None, ("soft_shadows",)),))
+    DATA = "light"
+    GROUPS = ((None, None, ("soft_shadows",)),)
 
 
 class SHAFTS_PT_material(ShaftsPanel, bpy.types.Panel):
     bl_label = "Shafts"
     bl_context = "material"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.material is not None
-
-    def draw(self, context):
-        draw_groups(self.layout, context.material.shafts,
-                    ((None, None, ("casts_soft_shadows", "receives_soft_shadows")),))
+    DATA = "material"
+    GROUPS = ((None, None, ("casts_soft_shadows", "receives_soft_shadows")),)
 
 
 classes = (SHAFTS_PT_sweep, SHAFTS_PT_tracer, SHAFTS_PT_light, SHAFTS_PT_material)
