@@ -32,6 +32,18 @@ for f in d.png p.png; do [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.2 >/dev/null; check "within bound" 0 $?
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.05 >/dev/null 2>&1; check "over bound" 3 $?
 
+grep -q "rel_rms  *relative RMS error over the lit region" "$dir/help" \
+  || { echo "FAIL: --help does not define rel_rms"; fail=1; }
+
+# An 8-bit sRGB preview against the linear reference: compared, with a warning;
+# two EXR files: no warning.
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --preview "$dir/ref.png" >/dev/null 2>"$dir/err"
+check "exr against exr" 0 $?
+[ -s "$dir/err" ] && { echo "FAIL: a warning for two EXR files: $(cat "$dir/err")"; fail=1; }
+"$tool" "$dir/ref.exr" "$dir/ref.png" >/dev/null 2>"$dir/err"; check "exr against png" 0 $?
+grep -q "warning: .*ref.exr is linear float radiance and .*ref.png a display-encoded" "$dir/err" \
+  || { echo "FAIL: no warning for an sRGB image against a linear one"; fail=1; }
+
 "$tool" "$dir/ref.exr" "$dir/negative.exr" --json >"$dir/neg.json"; check "negative" 0 $?
 python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["bad_values"] == 0)' "$dir/neg.json" \
   || { echo "FAIL: negative values not counted"; fail=1; }

@@ -387,14 +387,15 @@ class _Blender(Adapter):
     def missing(self, ctx):
         return _export_missing(ctx, "blender")
 
-    def _run_blender(self, ctx, prefix, engine, samples, work, log, env=None, pre=()):
+    def _run_blender(self, ctx, prefix, engine, samples, work, log, env=None, pre=(),
+                     seed=1):
         py = work / "scene.py"
         out = work / "out.exr"
         cmd = list(prefix) + ["blender", "-b"]
         for p in pre:
             cmd += ["-P", p]
         cmd += ["-P", py, "--", "--engine", engine, "--out", out,
-                "--samples", samples, "--seed", 1]
+                "--samples", samples, "--seed", seed]
         wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
         if not out.exists():
             raise RunFailed("blender wrote no image")
@@ -425,7 +426,9 @@ class Cycles(_Blender):
 
     def render(self, ctx, scene_path, params, work, log):
         _export(ctx, scene_path, "blender", work / "scene.py", log)
-        return self._run_blender(ctx, [], "cycles", params["samples"], work, log)
+        # A second seed (validation/peers.py) measures Cycles' noise.
+        return self._run_blender(ctx, [], "cycles", params["samples"], work, log,
+                                 seed=params.get("seed", 1))
 
 
 EEVEE_SCRIPT = HERE / "blender_eevee.py"

@@ -8,6 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "sh_cli.h"
 #include "sh_compare.h"
@@ -52,12 +53,74 @@ static const sh_cli_option options[] = {
      NULL, NULL, NULL, "make the directories of --diff and --preview if missing"},
 };
 
+/* The figures, defined for --help (sh_image_compare in core/sh_compare.h
+ * computes them; vc_print.c prints them). */
+static void epilogue(FILE *f) {
+  fprintf(f, "figures (luminance L = 0.2126 R + 0.7152 G + 0.0722 B; the lit "
+             "region:\nthe pixels whose reference L exceeds --lit times the "
+             "reference's largest):\n");
+  sh_cli_help_item(f, "rel_rms",
+                   "relative RMS error over the lit region: sqrt(sum (IMG - "
+                   "REF)^2 / sum REF^2) over its pixels and channels; the "
+                   "figure the validation reports and bounds");
+  sh_cli_help_item(f, "mean_rel",
+                   "mean over the lit pixels of |L(IMG) - L(REF)| / L(REF)");
+  sh_cli_help_item(f, "psnr",
+                   "10 log10(peak^2 / mean squared error) in dB over all "
+                   "pixels and channels, peak the reference's largest channel "
+                   "value; null (json) for identical images");
+  sh_cli_help_item(f, "max_abs",
+                   "the largest |IMG - REF| of any pixel and channel, in "
+                   "radiance");
+  sh_cli_help_item(f, "scale",
+                   "sum L(IMG) / sum L(REF) over the lit region: 1 when IMG is "
+                   "right on average, 1.1 when 10% too bright");
+  sh_cli_help_item(f, "bad_values",
+                   "the NaN, infinite and negative values in IMG");
+  sh_cli_help_item(f, "lit_pixels", "the size of the lit region");
+  sh_cli_help_item(f, "robust_peak",
+                   "the reference's 99th-percentile L, which scales the "
+                   "--diff picture");
+  fprintf(f, "\nBoth images should be linear radiance (EXR, HDR, PFM). An "
+             "8-bit image (PNG,\nJPEG) is decoded from sRGB, but it was "
+             "clamped to [0, 1] and exposed when\nwritten: compared with a "
+             "linear one, the figures measure that too, and a\nwarning says "
+             "so.\n");
+}
+
 static const sh_cli_tool tool = {
     "shafts_compare", "REF.exr IMG.exr [options]",
     "Compares IMG with the reference REF (same size; any format OpenImageIO\n"
     "reads, taken as linear radiance for float formats) and prints the errors.",
-    options, (int)(sizeof options / sizeof *options), 2, 2, NULL,
+    options, (int)(sizeof options / sizeof *options), 2, 2, epilogue,
     "3 if --max-rel-rms is exceeded.", NULL, NULL, NULL};
+
+/* True if `path` holds linear float radiance: an EXR (by its first bytes)
+ * or a Radiance HDR or PFM file (by its name); sh_image_read decodes the
+ * other formats, 8 or 16 bits a channel, from sRGB. */
+static int linear_float_file(const char *path) {
+  static const unsigned char exr_sig[4] = {0x76, 0x2f, 0x31, 0x01};
+  unsigned char magic[4] = {0};
+  FILE *f = fopen(path, "rb");
+  size_t got = f ? fread(magic, 1, sizeof magic, f) : 0;
+  if (f) fclose(f);
+  if (got == 4 && !memcmp(magic, exr_sig, 4)) return 1;
+  char ext[16];
+  sh_file_extension(path, ext, sizeof ext);
+  return !strcasecmp(ext, "hdr") || !strcasecmp(ext, "pfm");
+}
+
+/* Warns when one image is linear float and the other display-encoded. */
+static void warn_mixed_encoding(const char *ref, const char *img) {
+  int lr = linear_float_file(ref), li = linear_float_file(img);
+  if (lr == li) return;
+  fprintf(stderr,
+          "%s: warning: %s is linear float radiance and %s a display-encoded "
+          "(sRGB, 8 or 16 bits) image: it is decoded from sRGB, but it was "
+          "clamped to [0, 1] and exposed when written, so the figures measure "
+          "that as well; compare the renderers' EXR output\n",
+          TOOL, lr ? ref : img, lr ? img : ref);
+}
 
 /* Returns -1 to go on, else an exit status. */
 static int parse_args(int argc, char **argv, args *a) {
@@ -114,6 +177,7 @@ int main(int argc, char **argv) {
     sh_image_free(&ref);
     return 2;
   }
+  warn_mixed_encoding(a.ref, a.img);
   st = sh_image_compare(&img, &ref, a.lit, &r.e, a.diff ? &absdiff : NULL,
                           &err);
   if (st == SH_OK) {

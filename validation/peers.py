@@ -1,0 +1,253 @@
+"""The exporter's agreement with the reference: POV-Ray, Cycles and EEVEE
+on scene_export's test scenes (and the canonical scenes, small), each
+rendered through the validation's own adapters (renderers.py) into its run
+cache (runs.py) and measured by shafts_compare (metrics.py), the one
+definition of error of the project.
+
+  python3 -m validation.peers [--build-dir DIR] [--targets pov,cycles,eevee]
+      [--set tests|canonical|all] [--scenes a,b] [--cache DIR]
+      [--ref-spp N] [--samples N] [--check] [--markdown FILE] [--json FILE]
+
+For each scene: the reference (lmm_tracer --mode reference, 1024 samples),
+the target's rendering, and their comparison over the lit region (the
+pixels whose reference luminance exceeds 1% of the image's largest):
+`mean_rel`, the mean relative luminance difference, and `ratio`, the ratio
+of the luminance sums (a systematic scale error shows there). Cycles is
+rendered with two seeds; `mean_rel` of the second against the first
+measures its noise. With --check (the CTest tests scene_export.render_*)
+only the scenes the target is bounded on are rendered, and the exit status
+is 1 if one is outside BOUNDS (docs/scene_export.md explains them).
+"""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from . import renderers
+from .metrics import CompareFailed, compare
+from .runs import LocalExecutor, RunCache, plan_run
+from .scenes import prepare_file
+
+ROOT = Path(__file__).resolve().parent.parent
+TESTDATA = ROOT / "scene_export" / "testdata"
+
+# The test scenes and what each target makes of them: "exact" scenes must
+# agree within the bound, "approx" scenes use a feature the target
+# approximates and are held to a looser regression bound, "report" scenes
+# are measured and not bounded.
+TEST_SCENES = {
+    "point_medium": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "spot_sphere": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "sun_window": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "spot_gobo": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "lambert_floor": {"pov": "exact", "cycles": "exact", "eevee": "exact"},
+    "semi_shadow": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "phase_henyey_greenstein": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "phase_nishita_hazy": {"pov": "exact", "cycles": "approx", "eevee": "report"},
+    "phase_nishita_murky": {"pov": "exact", "cycles": "approx", "eevee": "report"},
+    "phase_rayleigh": {"pov": "exact", "cycles": "approx", "eevee": "report"},
+    "everything": {"pov": "approx", "cycles": "approx", "eevee": "report"},
+}
+
+CANONICAL_SCENES = ["lmm_lens", "lmm_table", "lmm_table_glass", "mountains_sun",
+                    "stage_5spots", "stained_glass", "teapot_spot"]
+CANONICAL_WIDTH = 80  # the canonical scenes are rendered this wide
+
+# Bounds on mean_rel and |ratio - 1| (docs/scene_export.md, "Bounds"):
+#  pov exact: POV-Ray is deterministic; its errors are the midpoint rule of
+#    media method 2 (200 intervals: about 1/200 of a shadow edge's contrast
+#    where a ray crosses one), half-float output (2^-11), the fade
+#    approximation of 1/r^2 ((f/r)^2 < 1e-8) and the reference's own error
+#    at 1024 samples (< 0.15%, measured from two seeds).
+#  cycles exact: Cycles is unbiased on these scenes, so its difference from
+#    the reference is noise. Two seeds differ by about sqrt(2) times the
+#    noise of one image, so the bound is that difference plus 0.5% for the
+#    reference's error and tessellation.
+#  approx: the measured error of the approximation plus a margin, so that
+#    regressions show.
+#  eevee exact: the Lambert floor (no medium): shading and shadow only.
+BOUNDS = {
+    ("pov", "exact"): {"mean_rel": 0.01, "ratio": 0.005},
+    ("pov", "approx"): {"mean_rel": 0.02, "ratio": 0.01},
+    ("cycles", "exact"): {"mean_rel": "noise+0.005", "ratio": 0.01},
+    ("cycles", "approx"): {"mean_rel": 0.35, "ratio": 0.4},
+    ("eevee", "exact"): {"mean_rel": 0.02, "ratio": 0.02},
+}
+
+# The settings of each target: POV-Ray's draft media sampling (200
+# intervals of one sample), Cycles at 128 samples (seeds 1 and 2), EEVEE at
+# the hard cases' user setting.
+ADAPTER_NAMES = {"pov": "povray", "cycles": "cycles", "eevee": "eevee"}
+
+
+def target_settings(target, ctx, samples):
+    """(label, params) of a target's rendering(s): Cycles has two seeds."""
+    if target == "pov":
+        return [("intervals 200", {"intervals": 200, "samples": 1})]
+    if target == "cycles":
+        return [("%d spp, seed %d" % (samples, s), {"samples": samples, "seed": s})
+                for s in (1, 2)]
+    adapter = renderers.by_name("eevee")[0]
+    _, label, params = adapter.hard_case_settings(ctx)[0]
+    return [(label, params)]
+
+
+def bound_for(target, kind, result):
+    """The bound of a target on a scene of a kind, or None (not bounded)."""
+    b = BOUNDS.get((target, kind))
+    if not b:
+        return None
+    mean = b["mean_rel"]
+    if isinstance(mean, str):  # "noise+X"
+        mean = result.get("noise", 0.0) + float(mean.split("+")[1])
+    return {"mean_rel": mean, "ratio": b["ratio"]}
+
+
+def within(result, bound):
+    """True or False against the bound, None if there is none."""
+    if bound is None:
+        return None
+    return (result["mean_rel"] <= bound["mean_rel"]
+            and abs(result["ratio"] - 1.0) <= bound["ratio"])
+
+
+def scenes_for(which, cache_root):
+    """(prepared scene, {target: kind}) pairs of a set."""
+    items = []
+    if which in ("tests", "all"):
+        for name, kinds in TEST_SCENES.items():
+            items.append((prepare_file(TESTDATA / (name + ".json"), cache_root), kinds))
+    if which in ("canonical", "all"):
+        for name in CANONICAL_SCENES:
+            path = ROOT / "scenes" / (name + ".json")
+            width = json.loads(path.read_text())["camera"]["width"]
+            items.append((prepare_file(path, cache_root, CANONICAL_WIDTH / width), {}))
+    return items
+
+
+class Peers:
+    """Renders and compares, through the run cache."""
+
+    def __init__(self, ctx, cache, ref_spp, say):
+        self.ctx, self.cache, self.say = ctx, cache, say
+        self.executor = LocalExecutor(ctx, cache)
+        self.ref_params = {"mode": "reference", "spp": ref_spp, "seed": 0}
+        self.tool = ctx.tool("validation/shafts_compare")
+
+    def image(self, adapter, scene, params, label):
+        run = self.executor.run(plan_run(self.ctx, adapter, scene, params, label),
+                                say=lambda m: self.say("  %s: %s" % (scene.name, m)))
+        if run["status"] != "ok":
+            raise CompareFailed("%s failed: %s" % (adapter.name, run.get("error")))
+        return run
+
+    def measure(self, scene, target, samples):
+        """The figures of one target on one scene (a dict)."""
+        ref = self.image(renderers.REFERENCE, scene, self.ref_params, "reference")
+        adapter = renderers.by_name(ADAPTER_NAMES[target])[0]
+        runs = [self.image(adapter, scene, p, label)
+                for label, p in target_settings(target, self.ctx, samples)]
+        m = compare(self.tool, ref["image"], runs[0]["image"])
+        out = {"scene": scene.name, "target": target, "label": runs[0]["label"],
+               "mean_rel": m["mean_rel"], "ratio": m["scale"], "rel_rms": m["rel_rms"],
+               "seconds": runs[0].get("tool_seconds") or runs[0].get("wall_seconds")}
+        if len(runs) > 1:
+            # The two seeds' difference, relative to the first seed.
+            out["noise"] = compare(self.tool, runs[0]["image"], runs[1]["image"])["mean_rel"]
+        return out
+
+
+def markdown(results):
+    """The table of docs/scene_export.md, "Measured agreement"."""
+    lines = ["| scene | target | mean rel. diff. | ratio | rel. RMS | Cycles noise (2 seeds) "
+             "| bound | pass | s/render |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for r in results:
+        b = r.get("bound")
+        lines.append("| %s | %s | %.4f | %.4f | %.4f | %s | %s | %s | %.1f |" % (
+            r["scene"], r["target"] + (" (approx.)" if r["kind"] == "approx" else ""),
+            r["mean_rel"], r["ratio"], r["rel_rms"],
+            "%.4f" % r["noise"] if "noise" in r else "-",
+            "%.4f" % b["mean_rel"] if b else "-",
+            {True: "yes", False: "NO", None: "-"}[r.get("pass")], r["seconds"] or 0.0))
+    return "\n".join(lines) + "\n"
+
+
+def parse(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build-dir", default=str(ROOT / "build"))
+    ap.add_argument("--targets", default="pov,cycles")
+    ap.add_argument("--set", default="tests", choices=("tests", "canonical", "all"))
+    ap.add_argument("--scenes", default="", help="comma-separated scene names to keep")
+    ap.add_argument("--cache", help="the run cache (default: BUILD/validation-cache)")
+    ap.add_argument("--ref-spp", type=int, default=1024)
+    ap.add_argument("--samples", type=int, default=128, help="Cycles samples per pixel")
+    ap.add_argument("--check", action="store_true",
+                    help="only the scenes the targets are bounded on; exit 1 if one "
+                         "is outside its bound")
+    ap.add_argument("--markdown")
+    ap.add_argument("--json")
+    ap.add_argument("-q", "--quiet", action="store_true")
+    args = ap.parse_args(argv)
+    for t in args.targets.split(","):
+        if t not in ADAPTER_NAMES:
+            ap.error("unknown target %r; known: %s" % (t, ", ".join(ADAPTER_NAMES)))
+    return args
+
+
+def main(argv=None):
+    args = parse(argv)
+    say = (lambda m: None) if args.quiet else (lambda m: print(m, flush=True))
+    ctx = renderers.Context(ROOT, args.build_dir, mode="quick", say=say)
+    for adapter in [renderers.REFERENCE] + [renderers.by_name(ADAPTER_NAMES[t])[0]
+                                            for t in args.targets.split(",")]:
+        note = adapter.missing(ctx)
+        if note:
+            print("peers: %s: %s" % (adapter.name, note), file=sys.stderr)
+            return 2
+    if not ctx.tool("validation/shafts_compare").exists():
+        print("peers: build shafts_compare first (%s)" % ctx.build, file=sys.stderr)
+        return 2
+    cache = RunCache(Path(args.cache) if args.cache else ctx.build / "validation-cache")
+    peers = Peers(ctx, cache, args.ref_spp, say)
+    keep = set(filter(None, args.scenes.split(",")))
+    results, expected = [], 0
+    for target in args.targets.split(","):
+        for scene, kinds in scenes_for(args.set, cache.root):
+            kind = kinds.get(target, "report")
+            if (keep and scene.name not in keep) or (args.check and kind == "report"):
+                continue
+            expected += 1
+            try:
+                r = peers.measure(scene, target, args.samples)
+            except CompareFailed as e:
+                print("FAIL: %s %s: %s" % (scene.name, target, e))
+                continue
+            r["kind"] = kind
+            r["bound"] = bound_for(target, kind, r)
+            r["pass"] = within(r, r["bound"])
+            results.append(r)
+            print("%-24s %-7s mean_rel %.4f ratio %.4f%s  bound %s  %s" % (
+                scene.name, target, r["mean_rel"], r["ratio"],
+                "  noise %.4f" % r["noise"] if "noise" in r else "",
+                "%.4f" % r["bound"]["mean_rel"] if r["bound"] else "-",
+                {True: "ok", False: "FAIL", None: "(reported)"}[r["pass"]]), flush=True)
+    if args.markdown:
+        Path(args.markdown).write_text(markdown(results))
+    if args.json:
+        Path(args.json).write_text(json.dumps(results, indent=1) + "\n")
+    failed = [r["scene"] for r in results if r["pass"] is False]
+    if len(results) != expected:
+        print("FAIL: %d of %d scenes compared" % (len(results), expected))
+        return 1
+    if failed:
+        print("FAIL: outside the bound: %s" % ", ".join(failed))
+        return 1
+    if args.check:
+        print("all %d scenes within their bounds" % len(results))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
