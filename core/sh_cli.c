@@ -5,6 +5,7 @@
 #include <jansson.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -257,6 +258,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
   char shorts[3 * SH_CLI_MAX_OPTIONS + 8] = "+:h";
   size_t ns = strlen(shorts);
   memset(args, 0, sizeof *args);
+  sh_cli_signals();
   if (t->noptions > SH_CLI_MAX_OPTIONS) {
     fprintf(stderr, "%s: too many options in the tool's table\n", t->name);
     return SH_EXIT_FAILURE;
@@ -409,28 +411,34 @@ int sh_cli_check_output(const char *tool, const char *option,
       return 0;
     }
   }
-  char dir[PATH_MAX];
   const char *slash = strrchr(path, '/');
-  if (!slash) return 1; /* the working directory */
-  snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
-  if (!*dir) return 1; /* the root */
+  if (!slash || slash == path) return 1; /* the working directory, the root */
+  char *dir = malloc((size_t)(slash - path) + 1);
+  if (!dir) {
+    fprintf(stderr, "%s: error: out of memory\n", tool);
+    return 0;
+  }
+  memcpy(dir, path, (size_t)(slash - path));
+  dir[slash - path] = '\0';
+  int ok = 1;
   struct stat sb;
   if (stat(dir, &sb) != 0) {
-    if (create && make_dirs(dir) == 0) return 1;
-    if (create)
-      fprintf(stderr, "%s: %s: cannot make directory '%s': %s\n", tool, option,
-              dir, strerror(errno));
-    else
-      fprintf(stderr, "%s: %s: directory '%s' does not exist (-p, --parents "
-                      "makes it)\n", tool, option, dir);
-    return 0;
-  }
-  if (!S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+    if (!(create && make_dirs(dir) == 0)) {
+      ok = 0;
+      if (create)
+        fprintf(stderr, "%s: %s: cannot make directory '%s': %s\n", tool,
+                option, dir, strerror(errno));
+      else
+        fprintf(stderr, "%s: %s: directory '%s' does not exist (-p, --parents "
+                        "makes it)\n", tool, option, dir);
+    }
+  } else if (!S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
+    ok = 0;
     fprintf(stderr, "%s: %s: '%s' is not a directory this user can write to\n",
             tool, option, dir);
-    return 0;
   }
-  return 1;
+  free(dir);
+  return ok;
 }
 
 void sh_cli_render_init(sh_cli_render *r) {
@@ -470,7 +478,66 @@ int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
   if ((rc = sh_cli_render_check(tool->name, r))) return rc;
   if ((rc = sh_cli_render_scene(tool->name, r, parsed->operands[0], scene)))
     return rc;
+  rc = sh_cli_files(tool->name, *scene, &r->files);
+  for (int k = 0; rc == 0 && k < r->outputs.count; k++)
+    rc = sh_cli_file_out(tool->name, r->files, r->outputs.items[k], "-o");
+  if (rc == 0 && r->stats)
+    rc = sh_cli_file_out(tool->name, r->files, r->stats, "--stats");
+  if (rc) {
+    sh_cli_render_free(r);
+    sh_scene_free(*scene);
+    *scene = NULL;
+    return rc;
+  }
   return -1;
+}
+
+void sh_cli_render_free(sh_cli_render *r) {
+  sh_outputs_free(r->files);
+  r->files = NULL;
+}
+
+int sh_cli_files(const char *tool, const sh_scene *scene, sh_outputs **set) {
+  sh_error err;
+  *set = sh_outputs_new();
+  if (!*set) {
+    fprintf(stderr, "%s: error: out of memory\n", tool);
+    return SH_EXIT_FAILURE;
+  }
+  if (scene && sh_outputs_scene_inputs(*set, scene, &err) != SH_OK) {
+    sh_outputs_free(*set);
+    *set = NULL;
+    return sh_cli_report(tool, &err);
+  }
+  return SH_EXIT_OK;
+}
+
+int sh_cli_file_out(const char *tool, sh_outputs *set, const char *path,
+                    const char *option) {
+  sh_error err;
+  if (sh_outputs_add(set, path, option, &err) == SH_OK) return SH_EXIT_OK;
+  sh_cli_report(tool, &err);
+  return SH_EXIT_BAD_INPUT;
+}
+
+static void sh_cli__on_signal(int sig) {
+  sh_outputs_on_signal();
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
+void sh_cli_signals(void) {
+  static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+  for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = sh_cli__on_signal;
+    sigemptyset(&sa.sa_mask);
+    /* A signal ignored by whoever started us stays ignored. */
+    if (sigaction(sigs[i], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+      continue;
+    sigaction(sigs[i], &sa, NULL);
+  }
 }
 
 double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene) {
@@ -577,12 +644,13 @@ char *sh_stats_text(const sh_stats *s) {
   return s ? json_dumps(s->obj, JSON_COMPACT | JSON_REAL_PRECISION(10)) : NULL;
 }
 
-sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err) {
+sh_status sh_stats_write(const sh_stats *s, sh_outputs *set, const char *path,
+                         sh_error *err) {
   char *text = s ? sh__json_dumps(json_incref(s->obj)) : NULL;
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   size_t n = strlen(text);
   text[n] = '\n'; /* replaces the terminator; the size below includes it */
-  sh_status st = sh_file_write_atomic(path, text, n + 1, err);
+  sh_status st = sh_outputs_write_bytes(set, path, text, n + 1, err);
   free(text);
   return st;
 }
@@ -595,22 +663,25 @@ void sh_stats_free(sh_stats *s) {
 
 /* ---- Images with provenance ---- */
 
-sh_status sh_cli_write_images(const char *tool, const sh_cli_list *outputs,
+sh_status sh_cli_write_images(const char *tool, sh_outputs *set,
+                              const sh_cli_list *outputs,
                               const sh_image *img, double exposure,
                               const char *mode, const char *settings_json,
                               const char *scene, sh_error *err) {
-  char software[128], abs_scene[PATH_MAX];
+  char software[128];
   snprintf(software, sizeof software, "%s %s", tool, sh_version());
-  if (!realpath(scene, abs_scene)) snprintf(abs_scene, sizeof abs_scene, "%s", scene);
+  char *abs_scene = realpath(scene, NULL);
   const char *attrs[] = {"Software", software,
                          "shafts:tool", tool,
                          "shafts:version", sh_version(),
                          "shafts:mode", mode,
                          "shafts:settings", settings_json ? settings_json : "{}",
-                         "shafts:scene", abs_scene,
+                         "shafts:scene", abs_scene ? abs_scene : scene,
                          NULL};
   sh_status st = SH_OK;
   for (int k = 0; st == SH_OK && k < outputs->count; k++)
-    st = sh_image_write_meta(outputs->items[k], img, exposure, attrs, err);
+    st = sh_outputs_write_image(set, outputs->items[k], img, exposure, attrs,
+                                err);
+  free(abs_scene);
   return st;
 }

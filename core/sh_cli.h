@@ -19,6 +19,7 @@
 
 #include "sh_error.h"
 #include "sh_image.h"
+#include "sh_outputs.h"
 #include "sh_scene.h"
 
 #ifdef __cplusplus
@@ -159,6 +160,9 @@ typedef struct sh_cli_render {
   long width, height;
   double exposure; /* NAN: the scene's render.exposure */
   int quiet, parents;
+  sh_outputs *files; /* the run's inputs and outputs (sh_outputs.h): made
+                        by sh_cli_render_start, freed by
+                        sh_cli_render_free */
 } sh_cli_render;
 
 #define SH_CLI__R(f) offsetof(sh_cli_render, f)
@@ -202,12 +206,32 @@ int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
                         const char *path, sh_scene **scene);
 
 /* A renderer's start: r's defaults, sh_cli_parse into r, the output
- * checks (sh_cli_render_check) and the scene loaded from the one operand
- * (r->scene) at the requested size (sh_cli_render_scene). Returns -1 with
- * *scene set, or the status to exit with. */
+ * checks (sh_cli_render_check), the scene loaded from the one operand
+ * (r->scene) at the requested size (sh_cli_render_scene) and r->files:
+ * the scene and its files as inputs, every -o and --stats as outputs (an
+ * output that is an input or another output is refused, exit 2). Returns
+ * -1 with *scene set, or the status to exit with. */
 int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
                         sh_cli_render *r, sh_cli_args *parsed,
                         sh_scene **scene);
+
+/* Frees r->files: whatever was staged and not published is discarded. */
+void sh_cli_render_free(sh_cli_render *r);
+
+/* The run's files for a tool: a set (sh_outputs.h) with the scene and its
+ * files as inputs when scene is not NULL. Prints the problem and returns
+ * its exit status, or 0 with *set. */
+int sh_cli_files(const char *tool, const sh_scene *scene, sh_outputs **set);
+
+/* Records an output in the tool's set (sh_outputs_add); prints the
+ * refusal and returns its exit status (2), or 0. */
+int sh_cli_file_out(const char *tool, sh_outputs *set, const char *path,
+                    const char *option);
+
+/* Installs the handlers of SIGINT, SIGTERM and SIGHUP that remove the
+ * run's temporary files (sh_outputs_on_signal) and end the process as the
+ * signal would. sh_cli_parse calls it. */
+void sh_cli_signals(void);
 
 /* The PNG exposure: --exposure, else the scene's. */
 double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene);
@@ -253,19 +277,23 @@ void sh_stats_num(sh_stats *s, const char *key, double value);
 void sh_stats_str(sh_stats *s, const char *key, const char *value);
 /* Adds (or replaces) every key of `from` in s; either may be NULL. */
 void sh_stats_merge(sh_stats *s, const sh_stats *from);
-/* Writes the record atomically to path. */
-sh_status sh_stats_write(const sh_stats *s, const char *path, sh_error *err);
+/* Stages the record as the output `path` of the run's set (published with
+ * the rest by sh_outputs_publish). */
+sh_status sh_stats_write(const sh_stats *s, sh_outputs *set, const char *path,
+                         sh_error *err);
 /* Frees the record; NULL is allowed. */
 void sh_stats_free(sh_stats *s);
 
 /* The record's text (compact JSON), malloc'd; NULL if out of memory. */
 char *sh_stats_text(const sh_stats *s);
 
-/* Writes one rendered image to every output, each carrying its provenance
- * in the header (sh_image_write_meta): "Software" (tool and version) and
- * shafts:tool, shafts:version, shafts:mode, shafts:settings (JSON) and
- * shafts:scene (the scene file's absolute path). */
-sh_status sh_cli_write_images(const char *tool, const sh_cli_list *outputs,
+/* Stages one rendered image as every output in the run's set, each
+ * carrying its provenance in the header (sh_image_write_meta): "Software"
+ * (tool and version) and shafts:tool, shafts:version, shafts:mode,
+ * shafts:settings (JSON) and shafts:scene (the scene file's absolute
+ * path). */
+sh_status sh_cli_write_images(const char *tool, sh_outputs *set,
+                              const sh_cli_list *outputs,
                               const sh_image *img, double exposure,
                               const char *mode, const char *settings_json,
                               const char *scene, sh_error *err);

@@ -1,4 +1,5 @@
 #include "sh_file.h"
+#include "sh_outputs.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,32 +11,12 @@
 
 sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
                                sh_error *err) {
-  size_t n = strlen(path);
-  char *tmp = malloc(n + 16);
-  if (!tmp) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  snprintf(tmp, n + 16, "%s.tmpXXXXXX", path);
-  int fd = mkstemp(tmp);
-  if (fd < 0) {
-    sh_status st = sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
-                                strerror(errno));
-    free(tmp);
-    return st;
-  }
-  fchmod(fd, 0644); /* mkstemp makes 0600; outputs are for everyone */
-  FILE *f = fdopen(fd, "wb");
-  int ok = f && fwrite(data, 1, size, f) == size;
-  if (f) ok = (fclose(f) == 0) && ok;
-  else close(fd);
-  if (ok && rename(tmp, path) != 0) ok = 0;
-  if (!ok) {
-    int e = errno;
-    unlink(tmp);
-    free(tmp);
-    return sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
-                        strerror(e));
-  }
-  free(tmp);
-  return SH_OK;
+  sh_outputs *set = sh_outputs_new();
+  if (!set) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  sh_status st = sh_outputs_write_bytes(set, path, data, size, err);
+  if (st == SH_OK) st = sh_outputs_publish(set, err);
+  sh_outputs_free(set);
+  return st;
 }
 
 sh_status sh_file_readable(const char *path, long long *size, sh_error *err) {

@@ -10,9 +10,11 @@
 extern "C" {
 #endif
 
-/* Writes `size` bytes to `path` atomically: into a temporary file in the
- * same directory, flushed, then renamed over `path`. On failure nothing is
- * left behind and SH_ERR_IO is returned. */
+/* Writes `size` bytes to `path` atomically: a set of one output
+ * (sh_outputs.h), staged in an unnamed temporary file in the same directory
+ * and renamed over `path` once complete. On failure nothing is left behind
+ * and SH_ERR_IO is returned (SH_ERR_ARG for a path that is a directory or
+ * another file that is not regular). */
 sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
                                sh_error *err);
 

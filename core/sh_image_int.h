@@ -17,6 +17,7 @@
 #define SH_IMAGE_INT_H
 
 #include "sh_error.h"
+#include "sh_image.h"
 
 #include <stddef.h>
 
@@ -79,5 +80,15 @@ sh_status sh__oiio_read(const char *path, sh__decoded *out, sh_error *err);
 sh_status sh__oiio_write(const char *tmp_path, const char *path, int width,
                          int height, int is_float, const void *data,
                          const char *const *attrs, sh_error *err);
+
+/* The checks of sh_image_write_meta: an image with pixels, a path with an
+ * extension, a finite exposure. */
+sh_status sh__image_check(const char *path, const sh_image *img,
+                          double exposure, sh_error *err);
+/* Encodes img as `path`'s extension asks, writing the bytes to write_path
+ * (a staged temporary, sh_outputs.c); messages name `path`. */
+sh_status sh__image_encode(const char *write_path, const char *path,
+                           const sh_image *img, double exposure,
+                           const char *const *attrs, sh_error *err);
 
 #endif

@@ -1,15 +1,14 @@
 /* sh_image_read and sh_image_write of sh_image.h: the file checks, the
- * choice of codec (sh_image_int.h), the transfer curve, and the atomic
- * write (a temporary file beside the destination, renamed over it once
- * complete, removed on every failure). */
+ * choice of codec (sh_image_int.h), the transfer curve; writing goes
+ * through sh_outputs.h (an unnamed temporary file beside the destination,
+ * given its name once complete). */
 #include "sh_image.h"
 #include "sh_file.h"
 #include "sh_image_int.h"
+#include "sh_outputs.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
-#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -135,37 +134,6 @@ sh_status sh_image_read_data(const char *path, sh_image *img, sh_error *err) {
   return sh__read(path, img, 0, err);
 }
 
-/* Creates a new, empty file next to `path`: "dir/.name.<pid>.<n>.ext",
- * written into tmp (size bytes). */
-static sh_status sh__make_temp(const char *path, const char *ext, char *tmp,
-                               size_t size, sh_error *err) {
-  static atomic_uint counter;
-  const char *slash = strrchr(path, '/');
-  int dirlen = slash ? (int)(slash - path + 1) : 0;
-  const char *base = path + dirlen;
-  int stemlen = (int)(strlen(base) - strlen(ext) - 1);
-  int last_errno = 0;
-  for (int attempt = 0; attempt < 100; attempt++) {
-    unsigned n = atomic_fetch_add(&counter, 1u);
-    int len = snprintf(tmp, size, "%.*s.%.*s.%ld.%u.%s", dirlen, path,
-                       stemlen, base, (long)getpid(), n, ext);
-    if (len < 0 || (size_t)len >= size) {
-      last_errno = ENAMETOOLONG;
-      break;
-    }
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-    if (fd >= 0) {
-      close(fd);
-      return SH_OK;
-    }
-    last_errno = errno;
-    if (last_errno != EEXIST)
-      break;
-  }
-  return sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
-                      strerror(last_errno));
-}
-
 /* The pixels a format stores: the radiance itself for float formats, else
  * clamp(radiance * 2^exposure) through the sRGB curve in bytes (NaN to 0).
  * Returns the buffer to free, or NULL out of memory. */
@@ -188,9 +156,8 @@ sh_status sh_image_write(const char *path, const sh_image *img,
   return sh_image_write_meta(path, img, exposure, NULL, err);
 }
 
-sh_status sh_image_write_meta(const char *path, const sh_image *img,
-                              double exposure, const char *const *attrs,
-                              sh_error *err) {
+sh_status sh__image_check(const char *path, const sh_image *img,
+                          double exposure, sh_error *err) {
   if (!img || !path || !*path)
     return sh_error_set(err, SH_ERR_ARG,
                         "sh_image_write was given no image or no path");
@@ -200,38 +167,47 @@ sh_status sh_image_write_meta(const char *path, const sh_image *img,
   if (!isfinite(exposure))
     return sh_error_set(err, SH_ERR_ARG,
                         "cannot write '%s': the exposure is not finite", path);
-  const char *ext = sh__extension(path);
-  if (!ext)
+  if (!sh__extension(path))
     return sh_error_set(err, SH_ERR_ARG,
                         "cannot write '%s': the file name has no extension to "
                         "choose the image format by",
                         path);
+  return SH_OK;
+}
+
+sh_status sh__image_encode(const char *write_path, const char *path,
+                           const sh_image *img, double exposure,
+                           const char *const *attrs, sh_error *err) {
+  sh_status st = sh__image_check(path, img, exposure, err);
+  if (st != SH_OK) return st;
+  const char *ext = sh__extension(path);
   int is_exr = !strcasecmp(ext, "exr"), is_png = !strcasecmp(ext, "png");
   int is_float = sh__is_float_format(ext);
   unsigned char *bytes = NULL;
   if (!is_float && !(bytes = sh__encode_srgb8(img, exposure)))
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory writing image '%s'",
                         path);
-  char tmp[4096];
-  sh_status st = sh__make_temp(path, ext, tmp, sizeof tmp, err);
-  if (st == SH_OK) {
-    int w = img->width, h = img->height;
-    if (is_exr)
-      st = sh__exr_write(tmp, path, w, h, img->rgb, attrs, err);
-    else if (is_png)
-      st = sh__png_write(tmp, path, w, h, bytes, attrs, err);
-    else
-      st = sh__oiio_write(tmp, path, w, h, is_float,
-                          is_float ? (const void *)img->rgb : bytes, attrs,
-                          err);
-    if (st == SH_OK && rename(tmp, path) != 0) {
-      int e = errno;
-      st = sh_error_set(err, SH_ERR_IO, "cannot write '%s': %s", path,
-                        strerror(e));
-    }
-    if (st != SH_OK)
-      remove(tmp);
-  }
+  int w = img->width, h = img->height;
+  if (is_exr)
+    st = sh__exr_write(write_path, path, w, h, img->rgb, attrs, err);
+  else if (is_png)
+    st = sh__png_write(write_path, path, w, h, bytes, attrs, err);
+  else
+    st = sh__oiio_write(write_path, path, w, h, is_float,
+                        is_float ? (const void *)img->rgb : bytes, attrs, err);
   free(bytes);
+  return st;
+}
+
+sh_status sh_image_write_meta(const char *path, const sh_image *img,
+                              double exposure, const char *const *attrs,
+                              sh_error *err) {
+  sh_status st = sh__image_check(path, img, exposure, err);
+  if (st != SH_OK) return st;
+  sh_outputs *set = sh_outputs_new();
+  if (!set) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  st = sh_outputs_write_image(set, path, img, exposure, attrs, err);
+  if (st == SH_OK) st = sh_outputs_publish(set, err);
+  sh_outputs_free(set);
   return st;
 }

@@ -277,11 +277,12 @@ static void test_errors(void) {
   SH_CHECK(sh_image_write(path, &img, 0, &err) != SH_OK);
   path_in_tmp(path, sizeof path, "noextension");
   SH_CHECK(sh_image_write(path, &img, 0, &err) == SH_ERR_ARG);
-  /* A destination that is a directory: the rename fails, the temporary file
-   * is removed. */
+  /* A destination that is a directory is refused before anything is
+   * written (sh_outputs.h). */
   path_in_tmp(dir, sizeof dir, "adir.png");
   SH_CHECK(mkdir(dir, 0700) == 0);
-  SH_CHECK(sh_image_write(dir, &img, 0, &err) == SH_ERR_IO);
+  SH_CHECK(sh_image_write(dir, &img, 0, &err) == SH_ERR_ARG);
+  SH_CHECK(strstr(err.message, "not a regular file") != NULL);
   rmdir(dir);
   SH_CHECK(count_entries(tmpdir) == before);
 

@@ -95,6 +95,7 @@ if [ "$backend" = egl ]; then
   [ -e "$dir/y.exr" ] && { echo "FAIL: an output was written after the backend failed"; fail=1; }
 fi
 render_cli_common "$tool" "$dir/good.json"
+render_files_distinct "$tool" "$dir/good.json"
 # --stats holds numbers: planes and shadow maps by the kinds of light
 # present, when no one number is given.
 sed 's/"render": {"planes": 7, /"render": {/' "$dir/good.json" >"$dir/kinds.json"

@@ -137,14 +137,15 @@ static int finish(const sh_cli_render *r, const sh_scene *scene,
   char *settings_text = sh_stats_text(settings);
   sh_stats_free(settings);
   sh_status status = sh_cli_write_images(
-      TOOL, &r->outputs, img, sh_cli_render_exposure(r, scene),
+      TOOL, r->files, &r->outputs, img, sh_cli_render_exposure(r, scene),
       "plane-sweep", settings_text, r->scene, &err);
   if (status == SH_OK && r->stats) {
     sh_stats *s = stats_record(r->scene, settings_text, st);
-    status = sh_stats_write(s, r->stats, &err);
+    status = sh_stats_write(s, r->files, r->stats, &err);
     sh_stats_free(s);
   }
   free(settings_text);
+  if (status == SH_OK) status = sh_outputs_publish(r->files, &err);
   if (status != SH_OK) return sh_cli_report(TOOL, &err);
   char detail[96];
   snprintf(detail, sizeof detail, ": %.3f s a frame + %.3f s setup",
@@ -171,6 +172,7 @@ int main(int argc, char **argv) {
   sh_error err;
   gs_options opt = gs_options_defaults(scene);
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {
+    sh_cli_render_free(&r);
     sh_scene_free(scene);
     return sh_cli_report(TOOL, &err);
   }
@@ -190,6 +192,7 @@ int main(int argc, char **argv) {
   else
     rc = finish(&r, scene, &opt, &img, &st);
   sh_image_free(&img);
+  sh_cli_render_free(&r);
   sh_scene_free(scene);
   return rc;
 }

@@ -26,6 +26,9 @@ done
 grep -q '"medium_samples"' "$dir/a.json" || { echo "FAIL: stats keys"; fail=1; }
 "$tool" "$dir/good.json" -o "$dir/b.exr" --spp 4 --threads 1 -q
 render_cli_common "$tool" "$dir/good.json" --spp 2
+render_files_distinct "$tool" "$dir/good.json" --spp 2
+# Half a million samples a pixel: seconds, so the signals come mid-render.
+render_signals "$tool" "$dir/good.json" --spp 500000
 "$tool" "$dir/good.json" -o "$dir/x.exr" --refined -q 2>"$dir/err"; check "--refined without lmm" 2 $?
 # The stats of a reference hold no method's keys; lmm's hold the caustic
 # pass's time inside the whole call's.

@@ -109,11 +109,13 @@ static sh_status write_outputs(const sh_cli_render *r,
                                const sh_image *img, double exposure,
                                const lmm_render_stats *st, sh_error *err) {
   char *settings = settings_json(st);
-  sh_status status = sh_cli_write_images(TOOL, &r->outputs, img, exposure,
+  sh_status status = sh_cli_write_images(TOOL, r->files, &r->outputs, img,
+                                         exposure,
                                          mode_name(st->mode), settings,
                                          r->scene, err);
   free(settings);
-  if (status != SH_OK || !r->stats) return status;
+  if (status != SH_OK) return status;
+  if (!r->stats) return sh_outputs_publish(r->files, err);
   size_t n = lmm_render_stats_json(st, NULL, 0);
   char *text = n ? malloc(n + 1) : NULL;
   if (!text) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -121,9 +123,10 @@ static sh_status write_outputs(const sh_cli_render *r,
   sh_stats *s = sh_stats_from_json(text);
   sh_stats_str(s, "tool", TOOL);
   sh_stats_str(s, "scene", r->scene);
-  status = sh_stats_write(s, r->stats, err);
+  status = sh_stats_write(s, r->files, r->stats, err);
   sh_stats_free(s);
   free(text);
+  if (status == SH_OK) status = sh_outputs_publish(r->files, err);
   return status;
 }
 
@@ -156,6 +159,7 @@ int main(int argc, char **argv) {
   if (rc >= 0) return rc;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
     fprintf(stderr, "%s: %s\n", TOOL, err.message);
+    sh_cli_render_free(&r);
     sh_scene_free(scene);
     return SH_EXIT_BAD_INPUT;
   }
@@ -183,6 +187,7 @@ int main(int argc, char **argv) {
     sh_cli_render_done(TOOL, &r, img.width, img.height, st.seconds, NULL);
   }
   sh_image_free(&img);
+  sh_cli_render_free(&r);
   sh_scene_free(scene);
   return rc;
 }

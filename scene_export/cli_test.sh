@@ -52,6 +52,20 @@ done
 [ -s "$dir/made/by/p.json" ] || { echo "FAIL: -p did not write"; fail=1; }
 rm -rf "$dir/made"
 empty "failed exports" "$out"
+# No file of an export may be the scene, whatever its spelling: the JSON
+# export over its own scene, the Blender export whose data file
+# (NAME.blender.json) is the scene. Refused with 2, the scene unchanged.
+cp "$data/point_medium.json" "$out/S.json"
+"$tool" "$out/S.json" --to json -o "$out/./S.json" 2>"$dir/err"; check "json export over its scene" 2 $?
+grep -q "is the same file as the scene.*must not overwrite an input" "$dir/err" \
+  || { echo "FAIL: same-file message: $(cat "$dir/err")"; fail=1; }
+cp "$out/S.json" "$out/T.blender.json"
+"$tool" "$out/T.blender.json" --to blender -o "$out/T.py" 2>/dev/null; check "blender data file over its scene" 2 $?
+cmp -s "$out/S.json" "$data/point_medium.json" && cmp -s "$out/T.blender.json" "$data/point_medium.json" \
+  || { echo "FAIL: a refused export changed its scene"; fail=1; }
+[ -e "$out/T.py" ] && { echo "FAIL: a refused export wrote T.py"; fail=1; }
+rm "$out/S.json" "$out/T.blender.json"
+empty "refused exports" "$out"
 
 # --strict refuses approximations and writes nothing; exact exports pass.
 "$tool" "$data/phase_nishita_hazy.json" --to blender -o "$out/h.py" --strict 2>"$dir/err"

@@ -7,7 +7,7 @@
 #include <unistd.h>
 
 #include "se_text.h"
-#include "sh_file.h"
+#include "sh_outputs.h"
 
 void se_note(se_notes *notes, const char *fmt, ...) {
   char msg[1024];
@@ -96,25 +96,28 @@ int se_output_owned_image(se_output *out, const char *path, sh_image *image) {
   return 1;
 }
 
-sh_status se_output_write(const se_output *out, sh_error *err) {
-  for (int i = 0; i < out->count; i++) {
+sh_status se_output_write(const se_output *out, const sh_scene *scene,
+                          sh_error *err) {
+  sh_outputs *set = sh_outputs_new();
+  if (!set) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  sh_status st = scene ? sh_outputs_scene_inputs(set, scene, err) : SH_OK;
+  for (int i = 0; st == SH_OK && i < out->count; i++)
+    st = sh_outputs_add(set, out->files[i].path, "the export's file", err);
+  for (int i = 0; st == SH_OK && i < out->count; i++) {
     const se_file *f = &out->files[i];
-    sh_status st;
-    if (f->image) {
-      st = sh_image_write(f->path, f->image, 0.0, err);
-    } else if (f->text.failed) {
+    if (f->image)
+      st = sh_outputs_write_image(set, f->path, f->image, 0.0, NULL, err);
+    else if (f->text.failed)
       st = sh_error_set(err, SH_ERR_NOMEM, "out of memory while writing '%s'",
                         f->path);
-    } else {
-      st = sh_file_write_atomic(f->path, f->text.data ? f->text.data : "",
-                                f->text.len, err);
-    }
-    if (st != SH_OK) {
-      for (int k = 0; k < i; k++) unlink(out->files[k].path);
-      return st;
-    }
+    else
+      st = sh_outputs_write_bytes(set, f->path,
+                                  f->text.data ? f->text.data : "",
+                                  f->text.len, err);
   }
-  return SH_OK;
+  if (st == SH_OK) st = sh_outputs_publish(set, err);
+  sh_outputs_free(set);
+  return st;
 }
 
 void se_output_free(se_output *out) {

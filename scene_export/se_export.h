@@ -66,10 +66,12 @@ int se_output_image(se_output *out, const char *path, const sh_image *image);
 /* Adds an image file that the output takes over (and frees, also on
  * failure). Returns 0 if out of memory. */
 int se_output_owned_image(se_output *out, const char *path, sh_image *image);
-/* Writes every file, each to a temporary file renamed into place. If any
- * write fails, the files already written by this call are removed and the
- * error returned: an export is written whole or not at all. */
-sh_status se_output_write(const se_output *out, sh_error *err);
+/* Writes every file through one sh_outputs set (sh_outputs.h): a file
+ * that is one of the scene's files (when scene is not NULL) or another
+ * file of the export is refused (SH_ERR_ARG) before anything is written,
+ * and the files appear together once all are complete, or none does. */
+sh_status se_output_write(const se_output *out, const sh_scene *scene,
+                          sh_error *err);
 void se_output_free(se_output *out);
 
 /* A target's build, the one signature every exporter has (se_run.h's

@@ -168,7 +168,7 @@ static void roundtrip(const char *path, const char *dir) {
   snprintf(out1, sizeof out1, "%s/normalised.json", dir);
   se_output o = {0};
   SH_CHECK(se_json_build(a, NULL, out1, &o, NULL, &err) == SH_OK);
-  SH_CHECK(se_output_write(&o, &err) == SH_OK);
+  SH_CHECK(se_output_write(&o, NULL, &err) == SH_OK);
   if (sh_scene_load(out1, &b, &err) != SH_OK) {
     char buf[1200];
     sh_error_format(&err, buf, sizeof buf);

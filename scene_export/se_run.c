@@ -24,7 +24,7 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                       "the target cannot represent the scene exactly (%d approximation%s); "
                       "nothing written",
                       notes->count, notes->count == 1 ? "" : "s");
-  if (st == SH_OK) st = se_output_write(&out, err);
+  if (st == SH_OK) st = se_output_write(&out, scene, err);
   se_output_free(&out);
   return st;
 }

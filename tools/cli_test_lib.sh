@@ -57,6 +57,63 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   iinfo "$dir/w.exr" | grep -Eq "10 x +20," || { echo "FAIL: --width 10 --height 20: $(iinfo "$dir/w.exr")"; fail=1; }
   rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr"
 }
+# No output may be an input or another output of the run, whatever the
+# spelling; a refused run exits 2 and changes nothing; a run killed by
+# SIGINT, SIGTERM or SIGKILL while rendering leaves no file of any name.
+render_files_distinct() { # tool, good scene, extra arguments...
+  local tool=$1 scene=$2 sdir sname
+  shift 2
+  sdir=$(dirname "$scene"); sname=$(basename "$scene")
+  cp "$scene" "$dir/keep.json"
+  "$tool" "$scene" -o "$dir/x.exr" --stats "$scene" -q "$@" 2>"$dir/err"
+  check "--stats is the scene" 2 $?
+  message_has "--stats is the scene" "$dir/err" "must not overwrite an input"
+  "$tool" "$scene" -o "$dir/x.exr" --stats "$sdir/./$sname" -q "$@" 2>/dev/null
+  check "--stats is the scene, spelled ./" 2 $?
+  ln -s "$scene" "$dir/link.json"
+  "$tool" "$scene" -o "$dir/x.exr" --stats "$dir/link.json" -q "$@" 2>/dev/null
+  check "--stats is a link to the scene" 2 $?
+  rm -f "$dir/link.json"
+  "$tool" "$scene" -o "$dir/x.exr" --stats "$dir/sub/../x.exr" -p -q "$@" 2>"$dir/err"
+  check "--stats is -o" 2 $?
+  message_has "--stats is -o" "$dir/err" "each output of a run must be a file of its own"
+  "$tool" "$scene" -o "$dir/x.exr" -o "$dir/x.exr" -q "$@" 2>/dev/null
+  check "-o twice" 2 $?
+  mkdir -p "$dir/adir"
+  "$tool" "$scene" -o "$dir/x.exr" --stats "$dir/adir" -q "$@" 2>"$dir/err"
+  check "--stats is a directory" 2 $?
+  message_has "--stats is a directory" "$dir/err" "not a regular file"
+  rmdir "$dir/adir"
+  cmp -s "$scene" "$dir/keep.json" || { echo "FAIL: the scene was changed"; fail=1; }
+  [ -e "$dir/x.exr" ] && { echo "FAIL: a refused run wrote x.exr"; fail=1; }
+  [ -n "$(ls -A "$sdir" "$dir" | grep '^\.')" ] && { echo "FAIL: refused runs left: $(ls -A "$sdir" "$dir")"; fail=1; }
+  rm -f "$dir/keep.json"; rmdir "$dir/sub" 2>/dev/null
+}
+# Interrupts a run with each signal once its output is open: the run ends
+# by the signal and its directory is as before (no output, no temporary).
+render_signals() { # tool, slow scene, extra arguments...
+  local tool=$1 scene=$2 sig pid status
+  shift 2
+  mkdir -p "$dir/sig"
+  for sig in INT TERM KILL; do
+    # A shell starts background jobs with SIGINT ignored: undone first.
+    python3 -c 'import os, signal, sys
+signal.signal(signal.SIGINT, signal.SIG_DFL)
+os.execvp(sys.argv[1], sys.argv[1:])' "$tool" "$scene" -o "$dir/sig/s.exr" \
+      -o "$dir/sig/s.png" --stats "$dir/sig/s.json" -q "$@" 2>/dev/null &
+    pid=$!
+    # Once the tool runs (not python), well into the render.
+    while [ "$(readlink /proc/$pid/exe)" != "$(readlink -f "$tool")" ] && kill -0 $pid 2>/dev/null; do
+      sleep 0.05
+    done
+    sleep 0.5
+    kill -s $sig $pid
+    wait $pid; status=$?
+    [ $status -gt 128 ] || { echo "FAIL: SIG$sig: the run ended with $status, not by the signal (too fast a scene?)"; fail=1; }
+    empty "a run killed by SIG$sig" "$dir/sig"
+  done
+  rm -rf "$dir/sig"
+}
 # Writes the tests' small scene: a quad floor in a medium box, seen from
 # (0, 1, 5). The light is on line 6 (messages name it).
 basic_scene() { # file, width, height, light (JSON), more shapes, more keys

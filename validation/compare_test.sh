@@ -28,6 +28,15 @@ near "bright scale" "$(field "$dir/bright.json" scale)" 1.1 1e-5
 near "bright bad_values" "$(field "$dir/bright.json" bad_values)" 0 0
 for f in d.png p.png; do [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail=1; }; done
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/d.exr" >/dev/null; check "exr diff" 0 $?
+# An output that is an input or the other output is refused, nothing written.
+cp "$dir/bright.exr" "$dir/keep.exr"
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/./bright.exr" >/dev/null 2>"$dir/err"
+check "--diff is the image" 2 $?
+message_has "--diff is the image" "$dir/err" "must not overwrite an input"
+cmp -s "$dir/bright.exr" "$dir/keep.exr" || { echo "FAIL: --diff overwrote the image"; fail=1; }
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/q.png" --preview "$dir/q.png" >/dev/null 2>&1
+check "--diff is --preview" 2 $?
+[ -e "$dir/q.png" ] && { echo "FAIL: a refused compare wrote q.png"; fail=1; }
 [ -s "$dir/d.exr" ] || { echo "FAIL: d.exr not written"; fail=1; }
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.2 >/dev/null; check "within bound" 0 $?
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.05 >/dev/null 2>&1; check "over bound" 3 $?

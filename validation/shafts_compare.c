@@ -147,15 +147,16 @@ static int parse_args(int argc, char **argv, args *a) {
 }
 
 /* Writes the difference image the extension of a->diff asks for. */
-static sh_status write_diff(const args *a, const sh_image *img,
+static sh_status write_diff(const args *a, sh_outputs *set, const sh_image *img,
                             const sh_image *ref, const sh_image *absdiff,
                             double robust_peak, sh_error *err) {
   char ext[16];
   sh_file_extension(a->diff, ext, sizeof ext);
-  if (!strcmp(ext, "exr")) return sh_image_write(a->diff, absdiff, 0.0, err);
+  if (!strcmp(ext, "exr"))
+    return sh_outputs_write_image(set, a->diff, absdiff, 0.0, NULL, err);
   sh_image vis = {0};
   sh_status st = vc_signed_diff(img, ref, robust_peak / a->gain, &vis, err);
-  if (st == SH_OK) st = sh_image_write(a->diff, &vis, 0.0, err);
+  if (st == SH_OK) st = sh_outputs_write_image(set, a->diff, &vis, 0.0, NULL, err);
   sh_image_free(&vis);
   return st;
 }
@@ -164,8 +165,23 @@ int main(int argc, char **argv) {
   args a;
   int rc = parse_args(argc, argv, &a);
   if (rc >= 0) return rc;
-
+  /* The images compared are the inputs; --diff and --preview the outputs,
+   * distinct from them and from each other, written together or not at
+   * all. */
+  sh_outputs *set;
+  if ((rc = sh_cli_files(TOOL, NULL, &set))) return rc;
   sh_error err;
+  if (sh_outputs_input(set, a.ref, "the reference", &err) != SH_OK ||
+      sh_outputs_input(set, a.img, "the image", &err) != SH_OK) {
+    sh_outputs_free(set);
+    return sh_cli_report(TOOL, &err);
+  }
+  if ((a.diff && (rc = sh_cli_file_out(TOOL, set, a.diff, "--diff"))) ||
+      (a.preview && (rc = sh_cli_file_out(TOOL, set, a.preview, "--preview")))) {
+    sh_outputs_free(set);
+    return rc;
+  }
+
   sh_image ref = {0}, img = {0}, absdiff = {0};
   vc_result r;
   memset(&r, 0, sizeof r);
@@ -175,6 +191,7 @@ int main(int argc, char **argv) {
     /* A missing or unreadable input is bad input, whatever its cause. */
     sh_cli_report(TOOL, &err);
     sh_image_free(&ref);
+    sh_outputs_free(set);
     return 2;
   }
   warn_mixed_encoding(a.ref, a.img);
@@ -188,9 +205,11 @@ int main(int argc, char **argv) {
     r.robust_peak = vc_robust_peak(&ref, 0.99);
   }
   if (st == SH_OK && a.diff)
-    st = write_diff(&a, &img, &ref, &absdiff, r.robust_peak, &err);
+    st = write_diff(&a, set, &img, &ref, &absdiff, r.robust_peak, &err);
   if (st == SH_OK && a.preview)
-    st = sh_image_write(a.preview, &img, a.exposure, &err);
+    st = sh_outputs_write_image(set, a.preview, &img, a.exposure, NULL, &err);
+  if (st == SH_OK) st = sh_outputs_publish(set, &err);
+  sh_outputs_free(set);
   if (st != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else {
