@@ -9,6 +9,7 @@ the time it needs to reach a given error.
 """
 
 import json
+import math
 import subprocess
 
 
@@ -70,19 +71,46 @@ def time_to_reach(points, threshold):
     return min(times) if times else None
 
 
+def _sig(x, digits):
+    """x (positive) with `digits` significant digits, in fixed notation:
+    never an exponent ("0.0012", "180", "12,300")."""
+    x = float("%.*g" % (digits, x))  # rounded first: 0.9997 is 1.00
+    decimals = max(0, digits - 1 - int(math.floor(math.log10(x))))
+    return "{:,.{}f}".format(x, decimals)
+
+
 def fmt_seconds(t):
-    """A time for tables: 3 significant digits, ms below a second."""
+    """A time for people: 3 significant digits, in ms below a second, s
+    below ten minutes, then minutes and hours ("12.3 ms", "1.50 s",
+    "20.5 min")."""
     if t is None:
         return "–"
-    if t < 1:
-        return "%.3g ms" % (t * 1000)
-    if t < 600:
-        return "%.3g s" % t
-    return "%.1f min" % (t / 60)
+    if t <= 0:
+        return "0 s"
+    if t < 0.0009995:
+        return "%s µs" % _sig(t * 1e6, 3) if t >= 1e-6 else "< 1 µs"
+    if t < 0.9995:
+        return "%s ms" % _sig(t * 1000, 3)
+    if t < 599.5:
+        return "%s s" % _sig(t, 3)
+    if t < 7200:
+        return "%.1f min" % (t / 60)
+    return "%.1f h" % (t / 3600)
 
 
 def fmt_percent(e):
-    """A relative error for tables."""
+    """A relative error (0.018 for 1.8%) for people: two significant digits
+    below 10%, whole per cent above, never an exponent ("0.27 %", "1.8 %",
+    "35 %", "180 %", "12,300 %"); "< 0.01 %" below that."""
     if e is None:
         return "–"
-    return "%.2g %%" % (e * 100)
+    p = abs(e) * 100
+    if p == 0:
+        return "0 %"
+    if p < 0.01:
+        return "< 0.01 %"
+    if p < 9.95:
+        return "%s %%" % _sig(p, 2)
+    if p < 1e6:
+        return "{:,.0f} %".format(p)
+    return "> 1,000,000 %"

@@ -347,7 +347,7 @@ def summary_markdown(results):
     rix = renderer_index(results)
     m = results["machine"]
     out = ["# Validation summary (%s mode)" % results["mode"], "",
-           "Written by `validation/validate.py --%s` on %s (%s, %d CPU threads; its runs "
+           "Written by `python3 -m validation.validate --%s` on %s (%s, %d CPU threads; its runs "
            "take %s of rendering from an empty cache; this one took %s with %d runs "
            "rendered and %d from the cache). Errors are relative RMS over the lit region "
            "against lmm_tracer's reference at %d spp; times are the renderers' own "

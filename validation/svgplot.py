@@ -11,7 +11,7 @@ external resources, so the report works offline; every point has a tooltip
 import math
 from xml.sax.saxutils import escape
 
-from .metrics import pareto_front
+from .metrics import fmt_percent, fmt_seconds, pareto_front
 
 WIDTH, HEIGHT = 680, 420
 LEFT, RIGHT, TOP, BOTTOM = 70, 180, 34, 52
@@ -28,13 +28,15 @@ def _decades(lo, hi):
     return a, b
 
 
+def _decade(exp):
+    """10^exp in fixed notation with thousands separators ("0.01", "1,000")."""
+    return "{:,.{}f}".format(10.0 ** exp, max(0, -exp))
+
+
 def _fmt_tick(exp, unit):
-    v = 10.0 ** exp
     if unit == "s":
-        if v >= 1:
-            return "%g s" % v
-        return "%g ms" % (v * 1000)
-    return "%g%%" % (v * 100)
+        return "%s s" % _decade(exp) if exp >= 0 else "%s ms" % _decade(exp + 3)
+    return "%s%%" % _decade(exp + 2)
 
 
 def speed_error_svg(series, title):
@@ -110,8 +112,9 @@ def speed_error_svg(series, title):
                        % (" ".join("%.1f,%.1f" % (X(t), Y(e)) for t, e, _ in f), s["colour"]))
         for t, e, tip in own:
             out.append('<circle cx="%.1f" cy="%.1f" r="3.5" fill="%s"><title>%s: %s, '
-                       '%.4g s, %.3g%%</title></circle>'
-                       % (X(t), Y(e), s["colour"], escape(s["label"]), escape(tip), t, e * 100))
+                       '%s, %s</title></circle>'
+                       % (X(t), Y(e), s["colour"], escape(s["label"]), escape(tip),
+                          escape(fmt_seconds(t)), escape(fmt_percent(e))))
 
     # Legend.
     ly = TOP + 8

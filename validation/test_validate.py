@@ -18,7 +18,8 @@ from .hard import bounds as hard_bounds
 from .hard import cases as hard_cases
 from .hard import runner as hard_runner
 from .metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach
-from .runs import RunCache, RunFailed, execute, run_key
+from .progress import ProgressExecutor, fmt_left
+from .runs import Run, RunCache, RunFailed, execute, run_key
 from .scenes import light_mask, prepare_data, project, referenced_files, scaled_size
 from .svgplot import speed_error_svg
 
@@ -50,6 +51,22 @@ class MetricsTest(unittest.TestCase):
         self.assertEqual(fmt_seconds(None), "–")
         self.assertEqual(fmt_percent(0.0123), "1.2 %")
         self.assertEqual(fmt_percent(0.35), "35 %")
+        # People's numbers: no exponent anywhere.
+        self.assertEqual(fmt_percent(1.8), "180 %")
+        self.assertEqual(fmt_percent(123.0), "12,300 %")
+        self.assertEqual(fmt_percent(0.0027), "0.27 %")
+        self.assertEqual(fmt_percent(0.000123), "0.012 %")
+        self.assertEqual(fmt_percent(1e-7), "< 0.01 %")
+        self.assertEqual(fmt_percent(0.0), "0 %")
+        self.assertEqual(fmt_percent(0.0999), "10 %")
+        self.assertEqual(fmt_seconds(0.9997), "1.00 s")
+        self.assertEqual(fmt_seconds(0.0996), "99.6 ms")
+        self.assertEqual(fmt_seconds(0.00012), "120 µs")
+        self.assertEqual(fmt_seconds(150.0), "150 s")
+        self.assertEqual(fmt_seconds(1230.0), "20.5 min")
+        for v in (1e-9, 3e-5, 0.5, 2.0, 1e3, 1e5, 1e40):
+            self.assertNotIn("e+", fmt_percent(v) + fmt_seconds(v))
+            self.assertNotIn("e-", fmt_percent(v) + fmt_seconds(v))
 
 
 class ScenesTest(unittest.TestCase):
@@ -229,7 +246,7 @@ class ReportTest(unittest.TestCase):
             self.assertNotIn("<oops>", page)
             self.assertIn("cannot read", page)
             md = report.summary_markdown(results)
-            self.assertIn("| s | 4x3 | gl_shafts | – | – | 200 ms | 3 % (200 ms) |", md)
+            self.assertIn("| s | 4x3 | gl_shafts | – | – | 200 ms | 3.0 % (200 ms) |", md)
 
     def test_hard_case_skipped_by_a_renderer_is_reported(self):
         with tempfile.TemporaryDirectory() as d:
@@ -280,6 +297,48 @@ class SlurmPartsTest(unittest.TestCase):
         eevee = renderers.by_name("eevee")[0]
         self.assertGreater(eevee.limits(ctx, Scene, {"tile": 8, "samples": 32,
                                                     "shadow_samples": 16, "taa": 1})[1], mb)
+
+class ProgressTest(unittest.TestCase):
+    """The progress messages: counts, the case's name, the time left."""
+
+    def test_counts_names_and_time_left(self):
+        class Adapter:
+            name, startup_seconds, seconds_per_megapixel = "slow", 10.0, 0.0
+
+            def work(self, params):
+                return 1.0
+
+        class Scene:
+            width = height = 10
+
+        runs = [Run("k%d" % i, "v", {"scene": "case%d" % i}, Adapter(), Scene, {})
+                for i in range(3)]
+
+        class Cache:
+            def load(self, key):
+                return {"status": "ok"} if key == "k0" else None
+
+        clock = [0.0]
+
+        class Inner:
+            name = "local"
+
+            def run(self, run, say=None):
+                say("rendering slow: x")
+                clock[0] += 5.0  # half the cost model's 10 s
+                return {"status": "ok"}
+
+        ex = ProgressExecutor(Inner(), Cache(), runs, clock=lambda: clock[0])
+        self.assertEqual((ex.total, len(ex.done)), (3, 1))
+        self.assertEqual(ex.seconds_left(), 20.0)
+        said = []
+        ex.run(runs[1], say=said.append)
+        self.assertEqual(said, ["[2/3 renderings, 20 s left] case1: rendering slow: x"])
+        # This machine took half the estimate: the last run is guessed at 5 s.
+        self.assertEqual(ex.seconds_left(), 5.0)
+        self.assertEqual(fmt_left(3725), "1 h 02 min")
+        self.assertEqual(fmt_left(200), "3 min 20 s")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -41,6 +41,7 @@ import subprocess
 
 from . import renderers, report, slurm
 from .hard import runner as hard_cases
+from .progress import ProgressExecutor
 from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,
                       time_to_reach)
 from .runs import LocalExecutor, RunCache, plan_run
@@ -88,7 +89,7 @@ class Validation:
     def run(self, adapter, scene, params, label):
         """One run, from the cache or rendered (by the executor)."""
         result = self.executor.run(plan_run(self.ctx, adapter, scene, params, label),
-                                   say=lambda m: self.say("  %s: %s" % (scene.name, m)))
+                                   say=lambda m: self.say("  " + m))
         if result.get("cached"):
             self.cached += 1
         else:
@@ -365,17 +366,20 @@ def main(argv=None):
     val = Validation(ctx, cache, report_dir, available, ref_spp, executor, say)
     scale = args.scale if args.scale is not None else mode["scale"]
     hard = [a for a in hard_wanted if a.missing(ctx) is None]
+    # Every run of the validation, planned ahead: the Slurm executor renders
+    # them first (the comparisons below then read them from the cache), and
+    # the progress messages count them and estimate the time left.
+    planned = [r for path in scene_files for r in val.planned(path, scale)]
+    if not args.no_hard_cases:
+        planned += hard_cases.planned_runs(ctx, hard, cache)
     if args.executor == "slurm":
-        # Every run of the sweep is planned and rendered first; the
-        # comparisons below then read them from the cache.
-        planned = [r for path in scene_files for r in val.planned(path, scale)]
-        if not args.no_hard_cases:
-            planned += hard_cases.planned_runs(ctx, hard, cache)
         try:
             executor.prefetch(planned, say)
         except slurm.SlurmError as e:
             print("validate: %s" % e, file=sys.stderr)
             return 2
+    executor = val.executor = ProgressExecutor(executor, cache, planned, args.retry_failed)
+    say("%d renderings, %d of them in the cache" % (executor.total, len(executor.done)))
     results["executor"] = executor.info()
 
     def save():

@@ -10,6 +10,8 @@ docs/validation.md explains every figure. A new case needs an entry here
 only where a renderer's default bound does not hold for it, with its reason.
 """
 
+from ..metrics import fmt_percent
+
 BOUNDS = {
     "lmm_tracer": {"user": {"default": 0.02, "dense": {"quick": 0.25, "full": 0.05}}},
     "gl_shafts": {"user": {"default": 0.02},
@@ -104,12 +106,12 @@ def bounds_table(mode, renderer_names):
                     why = BOUND_REASONS.get((r, kind), "") if case == "default" else \
                         BOUND_REASONS.get((r, case), "")
                 rows.append({"renderer": r, "kind": kind, "case": case,
-                             "bound": "none" if b is None else "%g%%" % (100 * b), "why": why})
+                             "bound": "none" if b is None else fmt_percent(b), "why": why})
         inv = INVARIANCE_BOUNDS.get(r, {})
         for kind, b in inv.items():
             if b is not None:
                 rows.append({"renderer": r, "kind": "invariance", "case": kind,
-                             "bound": "%g%%" % (100 * b), "why": INVARIANCE_REASONS[kind]})
+                             "bound": fmt_percent(b), "why": INVARIANCE_REASONS[kind]})
     return rows
 
 

@@ -38,7 +38,7 @@ import tempfile
 from pathlib import Path
 
 from .. import renderers
-from ..metrics import CompareFailed, compare, mask_image
+from ..metrics import CompareFailed, compare, fmt_percent, mask_image
 from ..runs import LocalExecutor, RunCache, plan_run
 from ..scenes import light_mask, prepare_data
 from .bounds import INVARIANCE_BOUNDS, bound_for, bounds_table, known_issue
@@ -266,9 +266,16 @@ def failures(results):
         for r in c["renderings"]:
             for chk in r["checks"]:
                 if not chk["ok"]:
-                    detail = chk.get("note") or "%.4g (bound %s)" % (chk.get("value") or 0, chk.get("bound"))
+                    detail = chk.get("note") or _check_detail(chk)
                     out.append((c["name"], r["renderer"], r["label"], chk["name"], detail))
     return out
+
+
+def _check_detail(chk):
+    """A failed check's value against its bound, for people."""
+    if chk["name"] == "finite, non-negative":
+        return "%d bad values" % (chk.get("value") or 0)
+    return "%s (bound %s)" % (fmt_percent(chk.get("value") or 0), fmt_percent(chk.get("bound")))
 
 
 def print_table(results, out=sys.stdout):
@@ -283,9 +290,9 @@ def print_table(results, out=sys.stdout):
             inv = [k for k in r["checks"] if k["name"].startswith("equals")]
             print("%-22s %-11s %-18s %-4s error %-9s bound %-6s %s" % (
                 c["name"], r["renderer"], r["label"][:18], "ok" if r.get("ok") else "FAIL",
-                "%.3g%%" % (100 * err) if err is not None else "-",
-                "%g%%" % (100 * bound) if bound is not None else "-",
-                "; ".join("%s %.2g%%%s" % (k["name"], 100 * (k.get("value") or 0),
+                fmt_percent(err) if err is not None else "-",
+                fmt_percent(bound) if bound is not None else "-",
+                "; ".join("%s %s%s" % (k["name"], fmt_percent(k.get("value") or 0),
                                           " KNOWN FAILURE" if k.get("known_failure") else
                                           "" if k["ok"] else " FAIL") for k in inv)),
                 file=out)
