@@ -2,7 +2,8 @@
  * on a grid of inputs: phase() against sh_phase_eval (isotropic,
  * Henyey-Greenstein at several g, Nishita hazy and murky, Rayleigh),
  * spot_profile() against sh_spot_profile (hard and smooth edges, the
- * exponent classes 0, 1 and other), and box_clip() against sh_box_clip
+ * exponent classes 0, 1 and other, narrow cones down to 0.005 degrees;
+ * the shader takes the angle as its versine 1 - cos), and box_clip() against sh_box_clip
  * (rays from inside and outside, axis-parallel ones, bounded and unbounded
  * intervals). Each runs in both kinds of program (baked and live).
  *
@@ -16,7 +17,7 @@
  * absolute rounding of the larger terms it is made of: for the phase
  * functions relative to max(|C|, 1e-4 * the largest C value on the grid);
  * for the spot profile to max(|C|, 1e-2 * the largest), as the compiler
- * may evaluate (c - cos_outer) / w as c / w - cos_outer / w, whose
+ * may evaluate (vo - v) / w as vo / w - v / w (v the versine), whose
  * cancellation at the cone's edge costs about 1e-6 absolute (measured:
  * 7e-5 relative at a profile of 1e-4); for the ray's interval
  * relative to max(|t|, the box's size). The worst difference of each
@@ -38,7 +39,7 @@
 #define N (W * H)
 #define TOL 1e-5
 
-/* TWIN 0: phase(in0.x); 1: spot_profile(in0.x); 2: box_clip(in0.xyz,
+/* TWIN 0: phase(in0.x); 1: spot_profile(in0.x), in0.x a versine; 2: box_clip(in0.xyz,
  * in1.xyz, in0.w, in1.w) in .xy. */
 static const gs__glsl TWIN = {
     "twin.frag",
@@ -148,18 +149,30 @@ static void test_phase(twins *t) {
 
 static void test_spot(twins *t) {
   sh_light *l = &t->scene->lights[0];
+  /* The last three are narrow cones (a laser), whose edges lie at versines
+   * of 1.4e-5 down to 3.8e-9. */
   static const struct { double outer, inner, exponent; } cases[] = {
-      {30, 30, 0}, {30, 20, 0}, {40, 10, 1}, {25, 25, 1}, {50, 35, 2.5}, {60, 5, 8}};
+      {30, 30, 0},      {30, 20, 0},     {40, 10, 1},        {25, 25, 1},
+      {50, 35, 2.5},    {60, 5, 8},      {0.3, 0.3, 0},      {0.3, 0.1, 1},
+      {0.005, 0.002, 2.5}};
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-    l->cos_outer = (float)cos(cases[c].outer * SH_PI / 180);
-    l->cos_inner = (float)cos(cases[c].inner * SH_PI / 180);
+    l->outer_deg = cases[c].outer;
+    l->inner_deg = cases[c].inner;
     l->exponent = (float)cases[c].exponent;
-    /* Half the grid over [-1, 1], half over the edge. */
+    /* The shader is given the angles' versines 1 - cos as floats
+     * (gs_params.c); the twin the cosines those floats stand for. */
+    double so = sin(0.5 * l->outer_deg * SH_PI / 180.0);
+    double si = sin(0.5 * l->inner_deg * SH_PI / 180.0);
+    float vo = (float)(2.0 * so * so), vi = (float)(2.0 * si * si);
+    l->cos_outer = 1.0 - vo;
+    l->cos_inner = 1.0 - vi;
+    /* The input is the versine: half the grid over [0, 2] (cos over [-1,
+     * 1]), half over the edge. */
     for (int i = 0; i < N; i++) {
-      double a = l->cos_outer - 0.01, b = fmin(l->cos_inner + 0.01, 1.0);
-      in0[4 * i] = i < N / 2 ? (float)(-1.0 + 2.0 * i / (N / 2 - 1))
+      double a = 0.5 * vi, b = 2.0 * vo - 0.5 * vi;
+      in0[4 * i] = i < N / 2 ? (float)(2.0 * i / (N / 2 - 1))
                              : (float)(a + (b - a) * (i - N / 2) / (N / 2 - 1));
-      want[i] = sh_spot_profile(l, in0[4 * i]);
+      want[i] = sh_spot_profile(l, 1.0 - (double)in0[4 * i]);
     }
     char what[80];
     snprintf(what, sizeof what, "spot profile, outer %g, inner %g, exponent %g",

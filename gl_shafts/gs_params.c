@@ -83,7 +83,12 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   gs__param_v3(p, "u_ldir", l->direction);
   gs__param_v3(p, "u_lpower",
                l->type == SH_LIGHT_DIRECTIONAL ? l->irradiance : l->intensity);
-  gs__param_4f(p, "u_spot", l->cos_outer, l->cos_inner, l->exponent,
+  /* The cone's angles as versines, 1 - cos = 2 sin^2(angle / 2), which
+   * keep their precision in float for narrow cones (common.glsl's
+   * spot_profile). */
+  double so = sin(0.5 * l->outer_deg * SH_PI / 180.0);
+  double si = sin(0.5 * l->inner_deg * SH_PI / 180.0);
+  gs__param_4f(p, "u_spot", 2.0 * so * so, 2.0 * si * si, l->exponent,
                l->tan_outer > 0 ? 1.0 / l->tan_outer : 0.0);
   gs__param_v3(p, "u_map_right", l->map_right);
   gs__param_v3(p, "u_map_up", l->map_up);

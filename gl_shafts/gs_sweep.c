@@ -60,26 +60,42 @@ static int reserve_verts(gs__sweep *sw, size_t n) {
 }
 
 /* The screen polygons of the slabs: the convex hull of the projection of
- * the lit volume's part between the slab's planes. Returns the number of
- * slabs with a polygon; adds their areas in pixels to *pixels. */
+ * the lit volume's part between the slab's planes, grown by half a pixel on
+ * every side (the hull of the projected points moved to the corners of a
+ * pixel's square around them). The rasteriser covers a pixel whose centre
+ * is inside; a part narrower than a pixel (a narrow spot near its apex)
+ * may hold a pixel's ray while its thin polygon, rounded to the
+ * rasteriser's grid, misses that pixel's centre: grown so, every pixel
+ * whose ray can meet the part is drawn, and the interval texture decides
+ * what it adds. Returns the number of slabs with a polygon; adds their
+ * areas in pixels to *pixels. */
 static int build_slabs(gs__sweep *sw, const gs__sweep_job *job, double *pixels) {
-  enum { MAXPTS = 4 * GS__POLY_MAX_FACES * GS__POLY_MAX_FACE_VERTS };
+  enum { MAXPTS = 4 * GS__POLY_MAX_FACES * GS__POLY_MAX_FACE_VERTS, GROWN = 4 * MAXPTS };
   const gs__light_setup *ls = job->light;
   const gs__view *view = job->frame->view;
   sh_vec3 *pts = malloc(MAXPTS * sizeof *pts);
-  double(*xy)[2] = malloc(MAXPTS * sizeof *xy);
-  double(*hull)[2] = malloc(2 * MAXPTS * sizeof *hull);
+  double(*xy)[2] = malloc(GROWN * sizeof *xy);
+  double(*hull)[2] = malloc(2 * GROWN * sizeof *hull);
   int nslabs = 0;
   size_t nv = 0;
   if (!pts || !xy || !hull) goto done;
   sh_vec3 fwd = view->frame.forward;
   double base = sh_dot(fwd, view->frame.origin);
   double dz = (ls->zmax - ls->zmin) / job->planes;
+  /* Half a pixel, in normalised device coordinates. */
+  double hx = 1.0 / view->width, hy = 1.0 / view->height;
   for (int k = 0; k < job->planes; k++) {
     double za = ls->zmin + k * dz, zb = k + 1 == job->planes ? ls->zmax : za + dz;
     int n = gs__poly_slab_points(ls->vol, fwd, base + za, base + zb, pts, MAXPTS);
-    for (int i = 0; i < n; i++) gs__view_ndc(view, pts[i], &xy[i][0], &xy[i][1]);
-    int h = gs__hull2d(xy, n, hull);
+    for (int i = 0; i < n; i++) {
+      double x, y;
+      gs__view_ndc(view, pts[i], &x, &y);
+      for (int c = 0; c < 4; c++) {
+        xy[4 * i + c][0] = x + (c & 1 ? hx : -hx);
+        xy[4 * i + c][1] = y + (c & 2 ? hy : -hy);
+      }
+    }
+    int h = gs__hull2d(xy, 4 * n, hull);
     if (h < 3) continue;
     if (!reserve_verts(sw, nv + (size_t)h)) {
       nslabs = -1;
@@ -167,11 +183,17 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   gs__param_f(p, "u_near", job->frame->view->znear);
   /* A spot's smooth edge is sampled at least once per its width, a
    * forward-peaked phase function (Nishita's murky) four times per the
-   * peak's half width. */
+   * peak's half width. A cone narrower than the sub-angle takes four
+   * samples per edge width: a ray crosses such a cone in a few steps, too
+   * few for the midpoint rule on its profile (a 0.3-degree spot with a
+   * 0.2-degree edge was 5.7% too bright), and a crossing's angle is short,
+   * so the samples stay few. */
   double sub = job->sub_angle;
   const sh_light *l = ls->light;
-  if (l->type == SH_LIGHT_SPOT && l->inner_deg < l->outer_deg)
-    sub = fmin(sub, (l->outer_deg - l->inner_deg) * SH_PI / 180.0);
+  if (l->type == SH_LIGHT_SPOT && l->inner_deg < l->outer_deg) {
+    double edge = (l->outer_deg - l->inner_deg) * SH_PI / 180.0;
+    sub = fmin(sub, l->outer_deg * SH_PI / 180.0 < sub ? 0.25 * edge : edge);
+  }
   sub = fmin(sub, 0.25 * phase_half_angle(&med->phase));
   gs__param_f(p, "u_inv_sub_angle", 1.0 / sub);
   gs__param_f(p, "u_inv_sub_texels", 1.0 / job->sub_texels);

@@ -79,6 +79,17 @@ empty "refused exports" "$out"
 check "approximation without --strict" 0 $?
 grep -q "warning:.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: no warning"; fail=1; }
 grep -q "Henyey-Greenstein" "$out/h.blender.json" || { echo "FAIL: no note in the data"; fail=1; }
+# A spot narrower than Blender's 1-degree spot_size (issue 11, a laser): a
+# note, and --strict refuses; POV-Ray's spotlight holds any cone.
+sed 's/"outer_angle_deg": 30, "inner_angle_deg": 20/"outer_angle_deg": 0.3/' \
+  "$data/spot_sphere.json" >"$dir/laser.json"
+"$tool" "$dir/laser.json" --to blender -o "$out/l.py" --strict 2>"$dir/err"
+check "--strict, a 0.3-degree spot in Blender" 2 $?
+grep -q "strict.*at least 1 degree wide" "$dir/err" || { echo "FAIL: narrow-spot message: $(cat "$dir/err")"; fail=1; }
+[ -z "$(ls "$out" | grep '^l[._]')" ] || { echo "FAIL: the refused narrow-spot export wrote $(ls "$out")"; fail=1; }
+"$tool" "$dir/laser.json" --to blender -o "$out/l.py" 2>"$dir/err"; check "narrow spot, approximate" 0 $?
+grep -q "warning:.*widened to 0.5" "$dir/err" || { echo "FAIL: no narrow-spot warning: $(cat "$dir/err")"; fail=1; }
+rm -f "$out"/l.* "$out"/l_*
 
 # Good exports write every file; the script is one fixed file.
 "$tool" "$data/spot_gobo.json" --to pov -o "$out/g.pov"; check "pov export" 0 $?

@@ -128,6 +128,15 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
                 i, outer);
         outer = 90.0;
       }
+      if (outer < 0.5) {
+        /* bpy clamps spot_size to [1, 180] degrees without a word. */
+        se_note(b->notes,
+                "lights[%d]: Blender's spot cone is at least 1 degree wide "
+                "(spot_size); the half-angle %g is widened to 0.5, with the same "
+                "intensity on the axis (%.3g times the cone's power).",
+                i, outer, (1.0 - cos(0.5 * SH_PI / 180.0)) / (1.0 - l->cos_outer));
+        outer = 0.5;
+      }
       double co = cos(outer * SH_PI / 180.0);
       double ci = cos(fmin(l->inner_deg, outer) * SH_PI / 180.0);
       double blend = co < 1.0 ? (ci - co) / (1.0 - co) : 0.0;

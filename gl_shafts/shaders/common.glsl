@@ -74,8 +74,8 @@ const float BIG = 3.0e38;
 // medium (0 without one): u_sigma_s, u_sigma_t, the box u_bmin, u_bmax, and
 //   the Henyey-Greenstein u_g;
 // light: u_lpos, u_ldir (unit axis or travel direction), u_lpower
-//   (intensity or irradiance), u_spot (cos outer, cos inner, exponent,
-//   1 / tan outer), the spot light map's frame u_map_right, u_map_up, a
+//   (intensity or irradiance), u_spot (1 - cos outer, 1 - cos inner,
+//   exponent, 1 / tan outer), the spot light map's frame u_map_right, u_map_up, a
 //   window's coordinates s = dot(u_win_s.xyz, p) + u_win_s.w and u_win_t,
 //   the 2D shadow map's lookup u_shadow_mat (world to [0,1]^2 x reversed
 //   depth) and the cube map's near distance u_shadow_near.
@@ -154,23 +154,32 @@ float phase(float c) {
 #endif
 }
 
-// The spot profile at cos(theta) (sh_spot_profile).
-float spot_profile(float c) {
+// 1 - cos(theta) of a unit direction at the angle theta from a unit axis,
+// from c = cos(theta) and s2 = sin^2(theta) (|w x axis|^2): near the axis
+// as s2 / (1 + c), which keeps its relative precision, where 1 - c would
+// lose it (float resolves 1 - c only to 6e-8, a 0.02-degree angle).
+float versine(float c, float s2) { return c > 0.0 ? s2 / (1.0 + c) : 1.0 - c; }
+
+// The spot profile (sh_spot_profile) at the angle theta from the axis,
+// given as its versine v = 1 - cos(theta): a narrow cone's edge (1 -
+// cos(0.3 degrees) = 1.4e-5) is compared where float resolves it. u_spot.x
+// and .y are the outer and inner angles' versines.
+float spot_profile(float v) {
 #if SPOT_SMOOTH == GS_SPOT_BY_VALUE
   // A hard edge is u in {0, 1}, where the smoothstep is exact.
-  float u = u_spot.y > u_spot.x ? clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0)
-                                : (c >= u_spot.x ? 1.0 : 0.0);
+  float u = u_spot.x > u_spot.y ? clamp((u_spot.x - v) / (u_spot.x - u_spot.y), 0.0, 1.0)
+                                : (v <= u_spot.x ? 1.0 : 0.0);
   float f = u * u * (3.0 - 2.0 * u);
 #elif SPOT_SMOOTH == GS_SPOT_SMOOTH
-  float u = clamp((c - u_spot.x) / (u_spot.y - u_spot.x), 0.0, 1.0);
+  float u = clamp((u_spot.x - v) / (u_spot.x - u_spot.y), 0.0, 1.0);
   float f = u * u * (3.0 - 2.0 * u);
 #else
-  float f = c >= u_spot.x ? 1.0 : 0.0;
+  float f = v <= u_spot.x ? 1.0 : 0.0;
 #endif
 #if SPOT_EXPONENT == GS_SPOT_EXPONENT_1
-  f *= max(c, 0.0);
+  f *= max(1.0 - v, 0.0);
 #elif SPOT_EXPONENT == GS_SPOT_EXPONENT_ANY
-  f *= pow(max(c, 0.0), u_spot.z);
+  f *= pow(max(1.0 - v, 0.0), u_spot.z);
 #endif
   return f;
 }
@@ -180,8 +189,9 @@ float spot_profile(float c) {
 vec3 light_pattern(vec3 p) {
 #if LIGHT_TYPE == GS_LIGHT_SPOT
   vec3 d = p - u_lpos;
-  float z = dot(d, u_ldir);
-  vec3 f = vec3(spot_profile(z / max(length(d), 1e-30)));
+  float z = dot(d, u_ldir), dd = max(dot(d, d), 1e-30);
+  vec3 x = cross(d, u_ldir);
+  vec3 f = vec3(spot_profile(versine(z * inversesqrt(dd), dot(x, x) / dd)));
 #if HAS_MAP
   vec2 xy = vec2(dot(d, u_map_right), dot(d, u_map_up)) * (u_spot.w / z);
   if (!(z > 0.0) || abs(xy.x) > 1.0 || abs(xy.y) > 1.0) return vec3(0.0);

@@ -13,20 +13,30 @@ vec2 clip_unit(vec2 iv, float a, float b) {
 }
 
 // The z of o + z d inside the spot's front cone (a convex set), as in
-// sh_light_clip: roots of (v.a)^2 - cos^2 |v|^2 = 0 with v = o + z d - L.
+// sh_light_clip: the roots of tan^2(outer) (v.a)^2 - |v_perp|^2 = 0 with
+// v = o + z d - L split into its parts along the axis a and across it.
+// Written so, with z counted from the foot of the light's perpendicular
+// on the line, no term cancels for a narrow cone (cos^2 - c^2 |v|^2 with
+// cos(outer) near 1 did: a 0.3-degree cone's chords came out empty or
+// twice too long). The discriminant B^2 - AC is k2 |da vp - va dp|^2 -
+// |vp x dp|^2 (Lagrange's identity), free of that cancellation too.
 vec2 cone_clip(vec3 o, vec3 d) {
-  vec3 v = o - u_lpos;
-  float c2 = u_spot.x * u_spot.x;
+  vec3 w = o - u_lpos;
+  float zf = -dot(w, d) / dot(d, d);
+  vec3 v = w + zf * d;
+  float k2 = 1.0 / (u_spot.w * u_spot.w); // tan^2(outer)
   float va = dot(v, u_ldir), da = dot(d, u_ldir);
-  float A = da * da - c2 * dot(d, d);
-  float B = va * da - c2 * dot(v, d);
-  float C = va * va - c2 * dot(v, v);
-  float disc = B * B - A * C;
+  vec3 vp = v - va * u_ldir, dp = d - da * u_ldir;
+  float A = k2 * da * da - dot(dp, dp);
+  float B = k2 * va * da - dot(vp, dp);
+  float C = k2 * va * va - dot(vp, vp);
+  vec3 x = cross(vp, dp), y = da * vp - va * dp;
+  float disc = k2 * dot(y, y) - dot(x, x);
   if (disc < 0.0) {
     // No crossing: the line is never inside (A < 0), or inside the double
     // cone throughout, which only a line through the apex can be.
     if (A < 0.0) return vec2(BIG, -BIG);
-    float za = -va / da;
+    float za = zf - va / da;
     return da > 0.0 ? vec2(za, BIG) : vec2(-BIG, za);
   }
   float q = -(B + (B >= 0.0 ? sqrt(disc) : -sqrt(disc)));
@@ -34,12 +44,11 @@ vec2 cone_clip(vec3 o, vec3 d) {
   float lo = min(r0, r1), hi = max(r0, r1);
   if (A < 0.0) {
     // Inside between the roots, on one nappe: keep it if it is the front one.
-    return dot(v + (0.5 * (lo + hi)) * d, u_ldir) >= 0.0 ? vec2(lo, hi)
-                                                         : vec2(BIG, -BIG);
+    return va + (0.5 * (lo + hi)) * da >= 0.0 ? vec2(lo, hi) + zf : vec2(BIG, -BIG);
   }
   // Inside outside the roots; the front nappe is the end the ray runs to
   // along the axis.
-  return da > 0.0 ? vec2(hi, BIG) : vec2(-BIG, lo);
+  return da > 0.0 ? vec2(hi + zf, BIG) : vec2(-BIG, lo + zf);
 }
 
 void main() {

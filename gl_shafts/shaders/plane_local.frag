@@ -21,6 +21,7 @@ float g_h, g_b, g_entry, g_dl;
 vec2 g_ndc;
 #if LIGHT_TYPE == GS_LIGHT_SPOT
 float g_ea, g_da; // e . axis, dn . axis
+vec3 g_exa, g_dxa; // e x axis, dn x axis
 #if HAS_MAP
 float g_er, g_dr, g_eu, g_du; // e and dn . the map's right and up
 #endif
@@ -46,7 +47,8 @@ vec3 sample_at(float c, float s) {
 #endif
 #if LIGHT_TYPE == GS_LIGHT_SPOT
   float cl = s * g_da - c * g_ea; // cos of the angle from the spot's axis
-  v *= spot_profile(cl);
+  vec3 xa = c * g_exa - s * g_dxa; // wi x axis: its length is the sine
+  v *= spot_profile(versine(cl, dot(xa, xa)));
 #if HAS_MAP
   vec2 xy = vec2(s * g_dr - c * g_er, s * g_du - c * g_eu) * (u_spot.w / cl);
   v *= (cl > 0.0 && abs(xy.x) <= 1.0 && abs(xy.y) <= 1.0)
@@ -89,6 +91,8 @@ void main() {
 #if LIGHT_TYPE == GS_LIGHT_SPOT
   g_ea = dot(g_e, u_ldir);
   g_da = dot(g_dn, u_ldir);
+  g_exa = cross(g_e, u_ldir);
+  g_dxa = cross(g_dn, u_ldir);
 #if HAS_MAP
   g_er = dot(g_e, u_map_right);
   g_dr = dot(g_dn, u_map_right);
