@@ -444,6 +444,7 @@ int sh_cli_check_output(const char *tool, const char *option,
 void sh_cli_render_init(sh_cli_render *r) {
   memset(r, 0, sizeof *r);
   r->exposure = NAN;
+  r->crop_args[0] = -1; /* not given */
 }
 
 int sh_cli_render_check(const char *tool, const sh_cli_render *r) {
@@ -460,11 +461,24 @@ int sh_cli_render_check(const char *tool, const sh_cli_render *r) {
   return SH_EXIT_OK;
 }
 
-int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
+int sh_cli_render_scene(const char *tool, sh_cli_render *r,
                         const char *path, sh_scene **scene) {
   int rc = sh_cli_load_scene(tool, path, r->quiet, scene);
-  if (rc == SH_EXIT_OK) sh_cli_resize(*scene, r->width, r->height);
-  return rc;
+  if (rc != SH_EXIT_OK) return rc;
+  sh_cli_resize(*scene, r->width, r->height);
+  const long *c = r->crop_args;
+  if (c[0] < 0) return SH_EXIT_OK; /* no --crop */
+  r->crop = (sh_crop){(int)c[0], (int)c[1], (int)c[2], (int)c[3]};
+  sh_error err;
+  /* All zero would read as no crop: given, it is an empty one. */
+  if (!sh_crop_given(&r->crop))
+    sh_error_set(&err, SH_ERR_ARG, "the crop 0 0 0 0 is empty");
+  else if (sh_crop_check(&r->crop, &(*scene)->camera, &err) == SH_OK)
+    return SH_EXIT_OK;
+  fprintf(stderr, "%s: --crop: %s\n", tool, err.message);
+  sh_scene_free(*scene);
+  *scene = NULL;
+  return SH_EXIT_BAD_INPUT;
 }
 
 int sh_cli_render_start(const sh_cli_tool *tool, int argc, char **argv,
@@ -638,6 +652,14 @@ void sh_stats_str(sh_stats *s, const char *key, const char *value) {
 
 void sh_stats_merge(sh_stats *s, const sh_stats *from) {
   if (s && from) json_object_update(s->obj, from->obj);
+}
+
+void sh_stats_crop(sh_stats *s, const sh_crop *crop) {
+  if (!sh_crop_given(crop)) return;
+  const int v[4] = {crop->x0, crop->y0, crop->x1, crop->y1};
+  static const char *const keys[4] = {"crop_x0", "crop_y0", "crop_x1",
+                                      "crop_y1"};
+  for (int i = 0; i < 4; i++) sh_stats_num(s, keys[i], v[i]);
 }
 
 char *sh_stats_text(const sh_stats *s) {

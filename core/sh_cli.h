@@ -17,6 +17,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "sh_camera.h"
 #include "sh_error.h"
 #include "sh_image.h"
 #include "sh_outputs.h"
@@ -158,7 +159,10 @@ typedef struct sh_cli_render {
   sh_cli_list outputs;
   const char *stats;
   long width, height;
-  double exposure; /* NAN: the scene's render.exposure */
+  long crop_args[4]; /* --crop X0 Y0 X1 Y1 as given */
+  sh_crop crop;      /* the crop, checked against the image by
+                        sh_cli_render_start (all zero: none) */
+  double exposure;   /* NAN: the scene's render.exposure */
   int quiet, parents;
   sh_outputs *files; /* the run's inputs and outputs (sh_outputs.h): made
                         by sh_cli_render_start, freed by
@@ -183,6 +187,11 @@ typedef struct sh_cli_render {
    "scene's aspect unless given)"},                                           \
   {"height", 0, SH_CLI_INT, "H", 1, SH_CLI__R(height), 1, 65536, 0,  \
    0, NULL, NULL, NULL, NULL, "image height in pixels instead of the scene's"}, \
+  {"crop", 0, SH_CLI_INT, "X0 Y0 X1 Y1", 4, SH_CLI__R(crop_args), 0, 65536,  \
+   0, 0, NULL, NULL, NULL, NULL,                                              \
+   "render only the pixels [X0, X1) x [Y0, Y1) of the image (after --width " \
+   "and --height; y down from the top), each as in the whole image (as "     \
+   "pbrt-v4's --pixelbounds); the outputs hold that region alone"},          \
   {"exposure", 0, SH_CLI_NUMBER, "E", 1, SH_CLI__R(exposure),        \
    -INFINITY, INFINITY, 0, 0, NULL, NULL, NULL, NULL,                         \
    "PNG exposure in stops (default: render.exposure, else 0)"},               \
@@ -200,9 +209,10 @@ void sh_cli_render_init(sh_cli_render *r);
  * Prints the problem and returns 2, else 0. */
 int sh_cli_render_check(const char *tool, const sh_cli_render *r);
 
-/* Loads the scene (sh_cli_load_scene) and applies --width/--height.
+/* Loads the scene (sh_cli_load_scene), applies --width/--height and
+ * checks --crop against the image (sh_crop_check; r->crop is set).
  * Returns 0 or the exit status. */
-int sh_cli_render_scene(const char *tool, const sh_cli_render *r,
+int sh_cli_render_scene(const char *tool, sh_cli_render *r,
                         const char *path, sh_scene **scene);
 
 /* A renderer's start: r's defaults, sh_cli_parse into r, the output
@@ -277,6 +287,8 @@ void sh_stats_num(sh_stats *s, const char *key, double value);
 void sh_stats_str(sh_stats *s, const char *key, const char *value);
 /* Adds (or replaces) every key of `from` in s; either may be NULL. */
 void sh_stats_merge(sh_stats *s, const sh_stats *from);
+/* Adds a crop's crop_x0, crop_y0, crop_x1 and crop_y1 when one is set. */
+void sh_stats_crop(sh_stats *s, const sh_crop *crop);
 /* Stages the record as the output `path` of the run's set (published with
  * the rest by sh_outputs_publish). */
 sh_status sh_stats_write(const sh_stats *s, sh_outputs *set, const char *path,

@@ -18,7 +18,8 @@ typedef struct job {
   const sh_rt *rt;
   const sh_reference_options *opt;
   sh_camera_frame frame;
-  sh_image *img;
+  sh_crop win;   /* the pixels rendered, in the whole image */
+  sh_image *img; /* the window's size */
   long tiles_done; /* updated atomically */
   int next_tile;   /* claimed atomically */
   int tiles_x, tiles;
@@ -159,23 +160,27 @@ static void second_render(worker *w, sh_vec3 d, sh_vec3 L, uint64_t pixel) {
 static void *work(void *arg) {
   worker *w = arg;
   job *jb = w->job;
-  int width = jb->img->width, height = jb->img->height;
+  /* Pixel (x, y) of the whole image: its index seeds its random stream. */
+  const sh_crop *win = &jb->win;
+  uint64_t width = (uint64_t)jb->frame.width;
   for (;;) {
     if (jb->opt->cancel && *jb->opt->cancel) break;
     int tile = __atomic_fetch_add(&jb->next_tile, 1, __ATOMIC_RELAXED);
     if (tile >= jb->tiles) break;
-    int x0 = (tile % jb->tiles_x) * TILE, y0 = (tile / jb->tiles_x) * TILE;
-    for (int y = y0; y < y0 + TILE && y < height; y++)
-      for (int x = x0; x < x0 + TILE && x < width; x++) {
+    int x0 = win->x0 + (tile % jb->tiles_x) * TILE;
+    int y0 = win->y0 + (tile / jb->tiles_x) * TILE;
+    for (int y = y0; y < y0 + TILE && y < win->y1; y++)
+      for (int x = x0; x < x0 + TILE && x < win->x1; x++) {
         sh_rng rng;
-        sh_rng_seed(&rng, jb->opt->seed, (uint64_t)y * (uint64_t)width + x);
+        sh_rng_seed(&rng, jb->opt->seed, (uint64_t)y * width + x);
         sh_vec3 d = sh_camera_dir(&jb->frame, x + 0.5, y + 0.5);
         w->camera_rays++;
         sh_vec3 L = trace(w, jb->frame.origin, d, 0, &rng);
         if (!jb->opt->hook && x % SH_REFERENCE_NOISE_STRIDE == SH_REFERENCE_NOISE_STRIDE / 2 &&
             y % SH_REFERENCE_NOISE_STRIDE == SH_REFERENCE_NOISE_STRIDE / 2)
-          second_render(w, d, L, (uint64_t)y * (uint64_t)width + x);
-        float *px = jb->img->rgb + 3 * ((size_t)y * width + x);
+          second_render(w, d, L, (uint64_t)y * width + x);
+        float *px = jb->img->rgb +
+                    3 * ((size_t)(y - win->y0) * jb->img->width + (x - win->x0));
         px[0] = (float)L.x;
         px[1] = (float)L.y;
         px[2] = (float)L.z;
@@ -209,12 +214,14 @@ sh_status sh_render_reference(const sh_scene *scene,
   if (opt->spp < 1 || opt->max_depth < 0 || opt->threads < 0)
     return sh_error_set(err, SH_ERR_ARG,
                         "spp must be >= 1, max_depth and threads >= 0");
-  double start = sh_seconds();
-  sh_status st = sh_image_alloc(out, scene->camera.width, scene->camera.height,
-                                err);
+  sh_status st = sh_crop_check(&opt->crop, &scene->camera, err);
   if (st != SH_OK) return st;
+  double start = sh_seconds();
   job jb;
   memset(&jb, 0, sizeof jb);
+  jb.win = sh_crop_window(&opt->crop, &scene->camera);
+  st = sh_image_alloc(out, jb.win.x1 - jb.win.x0, jb.win.y1 - jb.win.y0, err);
+  if (st != SH_OK) return st;
   jb.scene = scene;
   jb.opt = opt;
   jb.img = out;

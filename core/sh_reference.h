@@ -16,6 +16,7 @@
 
 #include <stdint.h>
 
+#include "sh_camera.h"
 #include "sh_error.h"
 #include "sh_image.h"
 #include "sh_rt.h"
@@ -47,6 +48,11 @@ typedef struct sh_reference_options {
   /* 1: the local illumination model with shadows (formula 1 of Debelov et
    * al.): no mirror rays; transmitted rays go on straight. Default 0. */
   int local;
+  /* Optional: render the window alone (sh_camera.h): `out` is the
+   * window's size, and each of its pixels is the same pixel of the whole
+   * image to the bit (its ray and its random stream are the whole image's).
+   * All zero: the whole image. */
+  sh_crop crop;
   const sh_rt *rt;            /* optional: a prebuilt sh_rt of the scene */
   const sh_shadow_hook *hook; /* optional */
 } sh_reference_options;

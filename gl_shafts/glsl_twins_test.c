@@ -258,7 +258,7 @@ int main(void) {
   gs__context *ctx = tu_context();
   if (!ctx) return 1;
   sh_error err = {0};
-  gs__view_init(&t.view, t.scene);
+  gs__view_init(&t.view, t.scene, NULL);
   if (gs__target_create(&t.target, W, H, &err) != SH_OK) {
     printf("FAIL: the target: %s\n", err.message);
     return 1;

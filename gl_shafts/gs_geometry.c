@@ -47,7 +47,7 @@ static double curve_error(const sh_shape *s, const gs__view *view, sh_vec3 c,
   scale = fmax(scale, sh_length(sh_xform_vector(&s->xform, sh_v3(0, 1, 0))));
   scale = fmax(scale, sh_length(sh_xform_vector(&s->xform, sh_v3(0, 0, 1))));
   double dist = sh_length(sh_sub(w, view->frame.origin)) - r * scale;
-  double pixel = 2.0 * view->frame.tan_half_y / view->height;
+  double pixel = 2.0 * view->sy / view->height;
   double e = pixel / 64 * fmax(dist, 0.0) / scale;
   return fmax(e, 1e-4 * r);
 }

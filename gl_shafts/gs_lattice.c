@@ -51,8 +51,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
       double y = y0 + (y1 - y0) * j / (nv - 1);
       for (int i = 0; i < nu; i++) {
         double x = x0 + (x1 - x0) * i / (nu - 1);
-        sh_vec3 d = sh_madd(sh_madd(f->forward, f->right, x * f->tan_half_x),
-                            f->up, y * f->tan_half_y);
+        sh_vec3 d = gs__view_ray(view, x, y);
         sh_vec3 xi = gs__xi_r2(scene, ls->light, f->origin, sh_madd(f->origin, d, z));
         o[0] = (float)xi.x;
         o[1] = (float)xi.y;

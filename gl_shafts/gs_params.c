@@ -64,9 +64,15 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   const sh_camera_frame *f = &view->frame;
   gs__param_v3(p, "u_eye", f->origin);
   gs__param_v3(p, "u_fwd", f->forward);
-  gs__param_v3(p, "u_rx", sh_scale(f->right, f->tan_half_x));
-  gs__param_v3(p, "u_uy", sh_scale(f->up, f->tan_half_y));
+  gs__param_v3(p, "u_rx", sh_scale(f->right, view->sx));
+  gs__param_v3(p, "u_uy", sh_scale(f->up, view->sy));
+  gs__param_v3(p, "u_rc", sh_add(sh_scale(f->right, view->cx),
+                                 sh_scale(f->up, view->cy)));
   gs__param_2f(p, "u_ndc_scale", 2.0 / view->width, 2.0 / view->height);
+  /* GL's pixel (0, 0) is pixel (x0, image height - y1) of the whole image
+   * counted from the bottom: per-pixel patterns follow the whole image. */
+  gs__param_2f(p, "u_frag0", view->win.x0,
+               scene->camera.height - view->win.y1);
   const sh_medium *m = &scene->medium;
   int on = m->present;
   gs__param_v3(p, "u_sigma_s", on ? m->sigma_s : sh_v3s(0));

@@ -42,7 +42,15 @@ struct gs_renderer {
   long built_reported;        /* progs.built at the end of the last draw */
 };
 
-/* Checks the options against the GL implementation's limits. */
+/* The size of the image drawn: the crop's, else the camera's. */
+static void image_size(const gs_renderer *r, int *w, int *h) {
+  sh_crop win = sh_crop_window(&r->opt.crop, &r->scene->camera);
+  *w = win.x1 - win.x0;
+  *h = win.y1 - win.y0;
+}
+
+/* Checks the crop against the image and the options against the GL
+ * implementation's limits. */
 static sh_status check_limits(const gs_renderer *r, sh_error *err) {
   GLint max2d = 0, max3d = 0, maxcube = 0, maxview[2] = {0, 0};
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max2d);
@@ -50,12 +58,14 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
   glGetIntegerv(GL_MAX_CUBE_MAP_TEXTURE_SIZE, &maxcube);
   glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxview);
   const gs_options *o = &r->opt;
-  const sh_camera *c = &r->scene->camera;
-  if (c->width > max2d || c->height > max2d || c->width > maxview[0] ||
-      c->height > maxview[1])
+  sh_status st = sh_crop_check(&o->crop, &r->scene->camera, err);
+  if (st != SH_OK) return st;
+  int w, h;
+  image_size(r, &w, &h);
+  if (w > max2d || h > max2d || w > maxview[0] || h > maxview[1])
     return sh_error_set(err, SH_ERR_ARG,
                         "the image (%dx%d) is larger than this GL renders (%dx%d)",
-                        c->width, c->height, maxview[0] < max2d ? maxview[0] : max2d,
+                        w, h, maxview[0] < max2d ? maxview[0] : max2d,
                         maxview[1] < max2d ? maxview[1] : max2d);
   for (int t = 0; t < 3; t++) {
     int res = gs_light_shadow_map_res(o, (sh_light_type)t);
@@ -166,7 +176,9 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   sh_status st = gs_options_from_scene(scene, &defaults, err);
   if (st != SH_OK) return st;
   if (!opt) opt = &defaults;
-  if ((st = gs_options_check(opt, err)) != SH_OK) return st;
+  if ((st = gs_options_check(opt, err)) != SH_OK ||
+      (st = sh_crop_check(&opt->crop, &scene->camera, err)) != SH_OK)
+    return st;
   gs_renderer *r = calloc(1, sizeof *r);
   if (!r) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   r->scene = scene;
@@ -179,8 +191,9 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   r->lights = calloc(nl, sizeof *r->lights);
   r->shadows = calloc(nl, sizeof *r->shadows);
   r->lattices = calloc(nl, sizeof *r->lattices);
-  r->readback = malloc((size_t)scene->camera.width * scene->camera.height * 4 *
-                       sizeof *r->readback);
+  int w, h;
+  image_size(r, &w, &h);
+  r->readback = malloc((size_t)w * h * 4 * sizeof *r->readback);
   if (!r->maps || !r->map_hash || !r->lights || !r->shadows || !r->lattices ||
       !r->readback) {
     gs_renderer_free(r);
@@ -188,10 +201,10 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   }
   st = gs__context_create(opt->backend, &r->ctx, err);
   if (st == SH_OK) st = check_limits(r, err);
-  gs__view_init(&r->view, scene);
+  gs__view_init(&r->view, scene, &r->opt.crop);
   if (st == SH_OK) st = gs__geometry_build(scene, &r->view, &r->geom, err);
   if (st == SH_OK)
-    st = gs__target_create(&r->target, scene->camera.width, scene->camera.height, err);
+    st = gs__target_create(&r->target, w, h, err);
   if (st == SH_OK) st = gs__sweep_init(&r->sweep, err);
   if (st == SH_OK) st = sync_maps(r, err);
   if (r->ctx) gs__context_release(r->ctx);
@@ -208,7 +221,8 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
   sh_status st = SH_OK;
   if (changed & (SH_CHANGED_SIZE | SH_CHANGED_CAMERA | SH_CHANGED_LIGHTS))
     st = check_limits(r, err);
-  int w = scene->camera.width, h = scene->camera.height;
+  int w, h;
+  image_size(r, &w, &h);
   if (st == SH_OK && (w != r->target.width || h != r->target.height)) {
     float *rb = realloc(r->readback, (size_t)w * h * 4 * sizeof *rb);
     if (!rb) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -217,7 +231,7 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
     st = gs__target_create(&r->target, w, h, err);
   }
   /* The near plane follows the scene's bounds, which every part moves. */
-  if (changed) gs__view_init(&r->view, scene);
+  if (changed && st == SH_OK) gs__view_init(&r->view, scene, &r->opt.crop);
   if (st == SH_OK && (changed & (SH_CHANGED_CAMERA | SH_CHANGED_SHAPES))) {
     int rebuilt, moved;
     st = gs__geometry_update(scene, &r->view, &r->geom, &rebuilt, &moved, err);
@@ -393,7 +407,9 @@ sh_status gs_render(const sh_scene *scene, const gs_options *opt,
   sh_status st = gs_renderer_create(scene, opt, &r, err);
   if (st != SH_OK) return st;
   double setup = sh_seconds() - start;
-  st = sh_image_alloc(out, scene->camera.width, scene->camera.height, err);
+  int w, h;
+  image_size(r, &w, &h);
+  st = sh_image_alloc(out, w, h, err);
   if (st == SH_OK) {
     st = gs_renderer_draw(r, out->rgb, stats, err);
     if (st != SH_OK) sh_image_free(out);

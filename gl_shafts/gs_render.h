@@ -34,6 +34,7 @@
 #ifndef GS_RENDER_H
 #define GS_RENDER_H
 
+#include "sh_camera.h"
 #include "sh_error.h"
 #include "sh_image.h"
 #include "sh_scene.h"
@@ -82,6 +83,10 @@ typedef struct gs_options {
                                fragment takes one sample per this many
                                texels of the map its part of the ray
                                crosses (at most 64 samples) */
+  sh_crop crop;             /* the pixels to draw (sh_camera.h): an
+                               off-axis part of the camera's frustum at the
+                               whole image's resolution; all zero: the whole
+                               image (gs_options_defaults) */
   gs_backend backend;       /* GS_BACKEND_AUTO unless asked */
   int live;                 /* 0 (default): every value of the scene (camera,
                                lights, medium) is baked into the shader
@@ -168,7 +173,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err);
 
 /* Renders one frame into rgb: width * height * 3 floats (the camera's
- * size), linear radiance, row-major from the top-left pixel (as
+ * size, or the crop's), linear radiance, row-major from the top-left pixel (as
  * sh_image). `stats` may be NULL. */
 sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
                            sh_error *err);

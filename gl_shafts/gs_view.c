@@ -1,9 +1,22 @@
 #include "gs_view.h"
 
-void gs__view_init(gs__view *v, const sh_scene *scene) {
-  sh_camera_frame_init(&scene->camera, &v->frame);
-  v->width = scene->camera.width;
-  v->height = scene->camera.height;
+void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop) {
+  const sh_camera *cam = &scene->camera;
+  sh_camera_frame_init(cam, &v->frame);
+  v->win = sh_crop_window(crop, cam);
+  v->width = v->win.x1 - v->win.x0;
+  v->height = v->win.y1 - v->win.y0;
+  /* The window's edges on the unit plane; the whole image's are exactly
+   * +-tan_half, so that its centre is 0 and its half size tan_half. */
+  double tx = v->frame.tan_half_x, ty = v->frame.tan_half_y;
+  double left = (2.0 * v->win.x0 / cam->width - 1.0) * tx;
+  double right = (2.0 * v->win.x1 / cam->width - 1.0) * tx;
+  double top = (1.0 - 2.0 * v->win.y0 / cam->height) * ty;
+  double bottom = (1.0 - 2.0 * v->win.y1 / cam->height) * ty;
+  v->cx = 0.5 * (left + right);
+  v->sx = 0.5 * (right - left);
+  v->cy = 0.5 * (top + bottom);
+  v->sy = 0.5 * (top - bottom);
   sh_vec3 lo, hi;
   sh_scene_bounds(scene, &lo, &hi);
   double size = sh_length(sh_sub(hi, lo));
@@ -12,8 +25,9 @@ void gs__view_init(gs__view *v, const sh_scene *scene) {
 
 sh_mat4 gs__view_proj(const gs__view *v) {
   const sh_camera_frame *f = &v->frame;
-  sh_vec3 rows[3] = {sh_scale(f->right, 1.0 / f->tan_half_x),
-                     sh_scale(f->up, 1.0 / f->tan_half_y), f->forward};
+  sh_vec3 rows[3] = {sh_scale(sh_madd(f->right, f->forward, -v->cx), 1.0 / v->sx),
+                     sh_scale(sh_madd(f->up, f->forward, -v->cy), 1.0 / v->sy),
+                     f->forward};
   sh_mat4 m = {{{0}}};
   for (int r = 0; r < 2; r++) {
     m.m[r][0] = rows[r].x;
@@ -29,6 +43,12 @@ sh_mat4 gs__view_proj(const gs__view *v) {
   return m;
 }
 
+sh_vec3 gs__view_ray(const gs__view *v, double x, double y) {
+  const sh_camera_frame *f = &v->frame;
+  return sh_madd(sh_madd(f->forward, f->right, v->cx + x * v->sx), f->up,
+                 v->cy + y * v->sy);
+}
+
 double gs__view_depth(const gs__view *v, sh_vec3 p) {
   return sh_dot(sh_sub(p, v->frame.origin), v->frame.forward);
 }
@@ -37,16 +57,17 @@ void gs__view_ndc(const gs__view *v, sh_vec3 p, double *x, double *y) {
   const sh_camera_frame *f = &v->frame;
   sh_vec3 d = sh_sub(p, f->origin);
   double z = sh_dot(d, f->forward);
-  *x = sh_dot(d, f->right) / (z * f->tan_half_x);
-  *y = sh_dot(d, f->up) / (z * f->tan_half_y);
+  *x = (sh_dot(d, f->right) - v->cx * z) / (z * v->sx);
+  *y = (sh_dot(d, f->up) - v->cy * z) / (z * v->sy);
 }
 
 void gs__view_frustum(const gs__view *v, gs__halfspace out[5]) {
   const sh_camera_frame *f = &v->frame;
-  /* x_v <= z tan_x: (right - tan_x forward) . (p - eye) <= 0, and so on. */
-  out[0] = gs__halfspace_at(sh_madd(f->right, f->forward, -f->tan_half_x), f->origin);
-  out[1] = gs__halfspace_at(sh_madd(sh_neg(f->right), f->forward, -f->tan_half_x), f->origin);
-  out[2] = gs__halfspace_at(sh_madd(f->up, f->forward, -f->tan_half_y), f->origin);
-  out[3] = gs__halfspace_at(sh_madd(sh_neg(f->up), f->forward, -f->tan_half_y), f->origin);
+  /* x_v <= (cx + sx) z: (right - (cx + sx) forward) . (p - eye) <= 0, and
+   * so on. */
+  out[0] = gs__halfspace_at(sh_madd(f->right, f->forward, -(v->cx + v->sx)), f->origin);
+  out[1] = gs__halfspace_at(sh_madd(sh_neg(f->right), f->forward, v->cx - v->sx), f->origin);
+  out[2] = gs__halfspace_at(sh_madd(f->up, f->forward, -(v->cy + v->sy)), f->origin);
+  out[3] = gs__halfspace_at(sh_madd(sh_neg(f->up), f->forward, v->cy - v->sy), f->origin);
   out[4] = gs__halfspace_at(sh_neg(f->forward), sh_madd(f->origin, f->forward, v->znear));
 }

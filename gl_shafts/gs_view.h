@@ -1,9 +1,12 @@
 /* The camera as GL sees it: the scene's pinhole camera (sh_camera.h) as a
- * reversed-Z, infinite-far projection. Pixel (i, j) of GL's framebuffer,
- * rows counted from the bottom, samples the ray of image pixel
- * (i, height - 1 - j) through its centre, as the reference renderer does.
- * View depth z is the distance along the forward axis: the pixel's ray is
- * eye + z * d with d . forward = 1. */
+ * reversed-Z, infinite-far projection, of the whole image or of a crop
+ * window of it (an off-axis sub-frustum: the window's pixels are the
+ * whole image's). Pixel (i, j) of GL's framebuffer, rows counted from the
+ * bottom, samples the ray of image pixel (x0 + i, y1 - 1 - j) through its
+ * centre, as the reference renderer does, where [x0, x1) x [y0, y1) is the
+ * window (the whole image without a crop). View depth z is the distance
+ * along the forward axis: the pixel's ray is eye + z * d with
+ * d . forward = 1. */
 #ifndef GS_VIEW_H
 #define GS_VIEW_H
 
@@ -13,25 +16,40 @@
 
 typedef struct gs__view {
   sh_camera_frame frame; /* origin, forward, right, up, tan_half_x/y */
-  int width, height;
+  int width, height;     /* the pixels drawn: the window's size */
+  sh_crop win;           /* the window in the camera's image */
+  /* The window on the plane one unit ahead of the eye: view directions
+   * with x_v / z in [cx - sx, cx + sx] and y_v / z in [cy - sy, cy + sy]
+   * (y up). The whole image: cx = cy = 0, sx = tan_half_x, sy =
+   * tan_half_y. NDC (the window's, [-1, 1]^2) maps to x_v / z = cx + sx x,
+   * and likewise for y. */
+  double cx, cy, sx, sy;
   double znear; /* the near plane's view depth */
 } gs__view;
 
-/* The scene's camera; the near plane is set tiny against the scene's size
- * (float depth with reversed Z keeps its precision). */
-void gs__view_init(gs__view *v, const sh_scene *scene);
+/* The scene's camera, of the window `crop` (NULL or all zero: the whole
+ * image; it must have passed sh_crop_check); the near plane is set tiny
+ * against the scene's size (float depth with reversed Z keeps its
+ * precision). */
+void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop);
 
-/* World to clip space: clip = (x_v / tan_x, y_v / tan_y, znear, z), so the
- * stored depth is znear / z (1 at the near plane, 0 at infinity). */
+/* World to clip space: clip = ((x_v - cx z) / sx, (y_v - cy z) / sy,
+ * znear, z), so the stored depth is znear / z (1 at the near plane, 0 at
+ * infinity). */
 sh_mat4 gs__view_proj(const gs__view *v);
+
+/* The unnormalised direction (d . forward = 1) of the ray through a point
+ * of the window's NDC. */
+sh_vec3 gs__view_ray(const gs__view *v, double x, double y);
 
 /* View depth of a world point. */
 double gs__view_depth(const gs__view *v, sh_vec3 p);
 
-/* Normalised device coordinates of a world point in front of the camera. */
+/* Normalised device coordinates (the window's) of a world point in front
+ * of the camera. */
 void gs__view_ndc(const gs__view *v, sh_vec3 p, double *x, double *y);
 
-/* The frustum's four sides and near plane as half-spaces. */
+/* The window's frustum: its four sides and the near plane as half-spaces. */
 void gs__view_frustum(const gs__view *v, gs__halfspace out[5]);
 
 #endif

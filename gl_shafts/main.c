@@ -82,8 +82,11 @@ static const sh_cli_tool tool = {
  * EXR header's shafts:settings. Every value is a number or a name. */
 static void put_settings(sh_stats *s, const sh_scene *scene,
                          const gs_options *o, const gs_stats *st) {
-  sh_stats_num(s, "width", scene->camera.width);
-  sh_stats_num(s, "height", scene->camera.height);
+  /* The image written: the crop's, which the crop_ keys place. */
+  sh_crop win = sh_crop_window(&o->crop, &scene->camera);
+  sh_stats_num(s, "width", win.x1 - win.x0);
+  sh_stats_num(s, "height", win.y1 - win.y0);
+  sh_stats_crop(s, &o->crop);
   int kinds[2] = {0, 0}; /* local, directional lights present */
   for (int i = 0; i < scene->nlights; i++)
     kinds[scene->lights[i].type == SH_LIGHT_DIRECTIONAL] = 1;
@@ -171,6 +174,7 @@ int main(int argc, char **argv) {
   if (rc >= 0) return rc;
   sh_error err;
   gs_options opt = gs_options_defaults(scene);
+  opt.crop = r.crop;
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {
     sh_cli_render_free(&r);
     sh_scene_free(scene);

@@ -127,7 +127,7 @@ int main(void) {
   gs__context *ctx = tu_context();
   if (!ctx) return 1;
   gs__view view;
-  gs__view_init(&view, scene);
+  gs__view_init(&view, scene, NULL);
   gs__params params = {0};
   gs__programs progs = {0};
   sh_light *l = &scene->lights[0];

@@ -44,6 +44,11 @@ basic_scene "$dir/scheme.json" 16 12 "$POINT_LIGHT" "" ', "render": {"scheme": "
 "$tool" "$dir/scheme.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "render.scheme both" 2 $?
 grep -q "scheme.json:9:[0-9]*: render.scheme: unknown value 'both'; expected one of: straight, refract-trace, refract-both" "$dir/err" \
   || { echo "FAIL: render.scheme message: $(cat "$dir/err")"; fail=1; }
+# A crop is the same pixels as the whole image's, to the bit.
+"$tool" "$dir/good.json" -o "$dir/crop.exr" --spp 4 --crop 3 2 13 9 -q; check "--crop render" 0 $?
+oiiotool "$dir/a.exr" --cut 10x7+3+2 -o "$dir/cut.exr"
+idiff -fail 0 -failpercent 0 "$dir/cut.exr" "$dir/crop.exr" >/dev/null \
+  || { echo "FAIL: the crop differs from the whole image's region"; fail=1; }
 # Pixels, not bytes: the EXR header carries the time of writing.
 idiff -fail 0 -failpercent 0 "$dir/a.exr" "$dir/b.exr" >/dev/null \
   || { echo "FAIL: same command, different image"; fail=1; }

@@ -105,6 +105,8 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
   if (!scene || !opt || !rgb)
     return sh_error_set(err, SH_ERR_ARG, "lmm_render: no scene, options or image");
   if ((st = lmm_render_options_check(opt, err))) return st;
+  /* Before the set-up, which can take seconds (the caustic pass). */
+  if ((st = sh_crop_check(&opt->crop, &scene->camera, err))) return st;
   double start = sh_seconds();
   sh_reference_options ro = sh_reference_defaults(scene);
   if (opt->spp > 0) ro.spp = opt->spp;
@@ -115,6 +117,7 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
   ro.progress = opt->progress;
   ro.progress_user = opt->progress_user;
   ro.cancel = opt->cancel;
+  ro.crop = opt->crop;
   /* The scene's keys of the light meshes, through the options' table: a bad
    * one is refused with its place even when an option replaces it. */
   lmm_render_options keys;

@@ -18,6 +18,7 @@
 #include <stdint.h>
 
 #include "lmm_method.h"
+#include "sh_camera.h"
 #include "sh_error.h"
 #include "sh_scene.h"
 
@@ -52,6 +53,9 @@ typedef struct lmm_render_options {
   int max_depth;          /* -1: render.max_depth */
   long long seed;         /* -1: render.seed */
   int threads;            /* 0: one per online CPU */
+  sh_crop crop;           /* the pixels to render (sh_camera.h), each as in
+                             the whole image to the bit; all zero: the
+                             whole image */
   /* As in sh_reference_options: reports from the worker threads (NULL:
    * none) and a flag that stops the render (SH_ERR_CANCELLED). */
   void (*progress)(void *user, long done, long total);
@@ -62,7 +66,8 @@ typedef struct lmm_render_options {
 typedef struct lmm_render_stats {
   lmm_mode mode;
   lmm_scheme scheme; /* the one used (never DEFAULT) */
-  int width, height, spp, max_depth, threads;
+  int width, height, spp, max_depth, threads; /* width, height: the image
+                                                 rendered (the crop's) */
   uint64_t seed;
   double seconds;        /* the whole call: set-up and render */
   double render_seconds; /* the tracing alone */
@@ -95,8 +100,9 @@ const char *const *lmm_render_option_choices(const char *key);
 sh_status lmm_render_options_check(const lmm_render_options *opt,
                                    sh_error *err);
 
-/* Renders `scene` into rgb: width * height * 3 floats (the camera's size),
- * linear radiance, rows from the top. `stats` may be NULL. On error (and
+/* Renders `scene` into rgb: width * height * 3 floats (the camera's size,
+ * or the crop's when one is given), linear radiance, rows from the top. A
+ * crop outside the image is SH_ERR_ARG (sh_crop_check). `stats` may be NULL. On error (and
  * on cancel) rgb is left as it was, and everything the call made is
  * freed. */
 sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,

@@ -1,13 +1,14 @@
 /* Tests of lmm_render (lmm_render.h): options set by name with their limits
  * and choices, the checks between options, each mode against the calls it
  * stands for (the reference renderer, with the light meshes hook),
- * statistics as JSON, and a cancel that leaves the caller's image as it
- * was. */
+ * statistics as JSON, a crop that is the same pixels as the whole image,
+ * and a cancel that leaves the caller's image as it was. */
 #include <jansson.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lmm_render.h"
+#include "sh_camera.h"
 #include "sh_parse.h"
 #include "sh_reference.h"
 #include "sh_test.h"
@@ -147,6 +148,59 @@ static void test_cancel(const sh_scene *s) {
   free(rgb);
 }
 
+/* A crop is the same region of the whole image to the bit, in every mode
+ * (the sphere lights of whitted and the light mesh's hook included), and
+ * one outside the image is refused before any work. */
+static void test_crop(const sh_scene *s) {
+  const sh_crop crop = {7, 5, 31, 26};
+  int w = s->camera.width, h = s->camera.height;
+  int cw = crop.x1 - crop.x0, ch = crop.y1 - crop.y0;
+  float *full = malloc(sizeof *full * 3 * (size_t)w * h);
+  float *part = malloc(sizeof *part * 3 * (size_t)cw * ch);
+  sh_error err;
+  for (int mode = 0; mode < 3 && full && part; mode++) {
+    lmm_render_options o;
+    lmm_render_stats st;
+    lmm_render_options_init(&o);
+    o.mode = (lmm_mode)mode;
+    if (o.mode == LMM_MODE_WHITTED) o.area_radius = 0.2;
+    o.threads = 1;
+    SH_CHECK(lmm_render(s, &o, full, NULL, &err) == SH_OK);
+    o.threads = 2;
+    o.crop = crop;
+    SH_CHECK(lmm_render(s, &o, part, &st, &err) == SH_OK);
+    SH_CHECK(st.width == cw && st.height == ch && st.camera_rays == (uint64_t)cw * ch);
+    int same = 1;
+    for (int y = 0; y < ch; y++)
+      same &= !memcmp(part + 3 * (size_t)y * cw,
+                      full + 3 * ((size_t)(y + crop.y0) * w + crop.x0),
+                      sizeof *part * 3 * (size_t)cw);
+    SH_CHECK(same);
+    if (!same) fprintf(stderr, "mode %d: the crop differs\n", mode);
+  }
+  static const struct {
+    sh_crop crop;
+    const char *message;
+  } bad[] = {
+      {{0, 0, 49, 32}, "x1 = 49 is beyond the image's width 48"},
+      {{0, 0, 48, 33}, "y1 = 33 is beyond the image's height 32"},
+      {{10, 0, 10, 32}, "x1 must be greater than x0"},
+      {{0, 5, 48, 4}, "y1 must be greater than y0"},
+      {{-1, 0, 48, 32}, "x0 is negative"},
+  };
+  for (size_t i = 0; i < sizeof bad / sizeof *bad && part; i++) {
+    lmm_render_options o;
+    lmm_render_options_init(&o);
+    o.crop = bad[i].crop;
+    int ok = lmm_render(s, &o, part, NULL, &err) == SH_ERR_ARG &&
+             !strcmp(err.path, "crop") && strstr(err.message, bad[i].message);
+    SH_CHECK(ok);
+    if (!ok) fprintf(stderr, "bad crop %zu: %s\n", i, err.message);
+  }
+  free(full);
+  free(part);
+}
+
 int main(void) {
   sh_scene *s = NULL;
   sh_error err;
@@ -154,6 +208,7 @@ int main(void) {
   test_options();
   if (s) {
     test_modes(s);
+    test_crop(s);
     test_cancel(s);
   }
   sh_scene_free(s);

@@ -78,7 +78,7 @@ static const sh_cli_tool tool = {
     set_option, &scratch, lmm_render_option_choices};
 
 /* The settings a render used (the EXR header's shafts:settings). */
-static char *settings_json(const lmm_render_stats *st) {
+static char *settings_json(const lmm_render_stats *st, const sh_crop *crop) {
   static const char *const schemes[] = {"default", "straight", "refract-trace",
                                         "refract-both"};
   sh_stats *s = sh_stats_new();
@@ -88,6 +88,7 @@ static char *settings_json(const lmm_render_stats *st) {
   sh_stats_num(s, "spp", st->spp);
   sh_stats_num(s, "max_depth", st->max_depth);
   sh_stats_num(s, "seed", (double)st->seed);
+  sh_stats_crop(s, crop);
   if (st->has_lmm) {
     sh_stats_num(s, "mesh_step", st->mesh_step);
     sh_stats_num(s, "kl", st->kl);
@@ -108,7 +109,7 @@ static const char *mode_name(lmm_mode mode) {
 static sh_status write_outputs(const sh_cli_render *r,
                                const sh_image *img, double exposure,
                                const lmm_render_stats *st, sh_error *err) {
-  char *settings = settings_json(st);
+  char *settings = settings_json(st, &r->crop);
   sh_status status = sh_cli_write_images(TOOL, r->files, &r->outputs, img,
                                          exposure,
                                          mode_name(st->mode), settings,
@@ -123,6 +124,7 @@ static sh_status write_outputs(const sh_cli_render *r,
   sh_stats *s = sh_stats_from_json(text);
   sh_stats_str(s, "tool", TOOL);
   sh_stats_str(s, "scene", r->scene);
+  sh_stats_crop(s, &r->crop);
   status = sh_stats_write(s, r->files, r->stats, err);
   sh_stats_free(s);
   free(text);
@@ -164,6 +166,7 @@ int main(int argc, char **argv) {
     return SH_EXIT_BAD_INPUT;
   }
   sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
+  opt.crop = r.crop;
   double exposure = sh_cli_render_exposure(&r, scene);
 
   sh_progress bar;
@@ -173,8 +176,9 @@ int main(int argc, char **argv) {
   opt.progress_user = &bar;
   sh_image img = {0};
   lmm_render_stats st;
+  sh_crop win = sh_crop_window(&r.crop, &scene->camera);
   sh_status status =
-      sh_image_alloc(&img, scene->camera.width, scene->camera.height, &err);
+      sh_image_alloc(&img, win.x1 - win.x0, win.y1 - win.y0, &err);
   if (status == SH_OK) status = lmm_render(scene, &opt, img.rgb, &st, &err);
   sh_progress_finish(&bar);
   if (status == SH_OK)

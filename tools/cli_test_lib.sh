@@ -55,7 +55,21 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   iinfo "$dir/w.exr" | grep -Eq "8 x +6," || { echo "FAIL: --width 8: $(iinfo "$dir/w.exr")"; fail=1; }
   "$tool" "$scene" -o "$dir/w.exr" -q --width 10 --height 20 "$@"; check "--width --height" 0 $?
   iinfo "$dir/w.exr" | grep -Eq "10 x +20," || { echo "FAIL: --width 10 --height 20: $(iinfo "$dir/w.exr")"; fail=1; }
-  rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr"
+  # --crop: the region alone, its place in the settings; a crop that is
+  # not inside the image (after --width) is refused with its bound.
+  "$tool" "$scene" -o "$dir/c.exr" -q --width 8 --crop 2 1 7 5 "$@"; check "--crop" 0 $?
+  iinfo "$dir/c.exr" | grep -Eq "5 x +4," || { echo "FAIL: --crop 2 1 7 5: $(iinfo "$dir/c.exr")"; fail=1; }
+  iinfo -v "$dir/c.exr" | grep -q 'crop_x0\\*":2' || { echo "FAIL: --crop not in the settings"; fail=1; }
+  "$tool" "$scene" -o "$dir/x.exr" -q --width 8 --crop 0 0 9 6 "$@" 2>"$dir/err"; check "--crop beyond" 2 $?
+  message_has "--crop beyond" "$dir/err" "--crop: x1 = 9 is beyond the image's width 8"
+  "$tool" "$scene" -o "$dir/x.exr" -q --crop 4 0 4 6 "$@" 2>"$dir/err"; check "--crop empty" 2 $?
+  message_has "--crop empty" "$dir/err" "--crop: x1 must be greater than x0"
+  "$tool" "$scene" -o "$dir/x.exr" -q --crop 0 0 0 0 "$@" 2>"$dir/err"; check "--crop zeros" 2 $?
+  message_has "--crop zeros" "$dir/err" "--crop: the crop 0 0 0 0 is empty"
+  "$tool" "$scene" -o "$dir/x.exr" -q --crop 1 2 3 2>"$dir/err"; check "--crop 3 values" 2 $?
+  message_has "--crop 3 values" "$dir/err" "--crop needs 4 values"
+  [ -e "$dir/x.exr" ] && { echo "FAIL: a refused crop wrote its output"; fail=1; }
+  rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr" "$dir/c.exr"
 }
 # No output may be an input or another output of the run, whatever the
 # spelling; a refused run exits 2 and changes nothing; a run killed by

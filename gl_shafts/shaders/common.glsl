@@ -69,8 +69,11 @@ const float PI = 3.14159265358979;
 const float BIG = 3.0e38;
 
 // The parameters come first, as constants or uniforms (gs_params.c):
-// camera: u_eye, u_fwd, u_rx (right * tan(half fov x)), u_uy (up * tan(half
-//   fov y)), u_ndc_scale (2 / width, 2 / height);
+// camera: u_eye, u_fwd, u_rx and u_uy (right and up times the drawn
+//   window's half size on the plane one unit ahead: tan(half fov) for the
+//   whole image), u_rc (the window's centre on that plane, 0 for the whole
+//   image), u_ndc_scale (2 / width, 2 / height of the window), u_frag0 (the
+//   window's corner in the whole image's pixels, from the bottom left);
 // medium (0 without one): u_sigma_s, u_sigma_t, the box u_bmin, u_bmax, and
 //   the Henyey-Greenstein u_g;
 // light: u_lpos, u_ldir (unit axis or travel direction), u_lpower
@@ -84,10 +87,14 @@ layout(binding = GS_UNIT_MAP) uniform sampler2D u_map;
 layout(binding = GS_UNIT_SHADOW_2D) uniform sampler2DShadow u_shadow2d;
 layout(binding = GS_UNIT_SHADOW_CUBE) uniform samplerCubeShadow u_shadowcube;
 
-// The unnormalised direction of the ray through a fragment's centre.
+// The unnormalised direction (d . u_fwd = 1) of the ray through a point of
+// the drawn window's NDC, and through a fragment's centre.
+vec3 ndc_ray(vec2 ndc) {
+  return u_fwd + u_rc + ndc.x * u_rx + ndc.y * u_uy;
+}
+
 vec3 view_ray(vec2 frag) {
-  vec2 ndc = frag * u_ndc_scale - 1.0;
-  return u_fwd + ndc.x * u_rx + ndc.y * u_uy;
+  return ndc_ray(frag * u_ndc_scale - 1.0);
 }
 
 // 1 / d with zero components replaced by a huge number of the right sign,

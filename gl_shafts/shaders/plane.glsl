@@ -32,7 +32,7 @@ float jitter_offset() {
 #if JITTER
   // Interleaved gradient noise, rotated by the golden ratio from plane to
   // plane: a stratified, per-pixel offset in [0, 1).
-  float u = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+  float u = fract(52.9829189 * fract(dot(gl_FragCoord.xy + u_frag0, vec2(0.06711056, 0.00583715))));
   return fract(u + 0.618034 * v_plane);
 #else
   return 0.5;

@@ -45,7 +45,7 @@ void main() {
   float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
   if (!(hi > lo)) discard;
   vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
-  vec3 d = u_fwd + ndc.x * u_rx + ndc.y * u_uy;
+  vec3 d = ndc_ray(ndc);
   float dl = length(d);
   float u = jitter_offset();
 #if HAS_MAP || TAU_SUB

@@ -78,7 +78,7 @@ void main() {
   float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
   if (!(hi > lo)) discard;
   g_ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
-  vec3 d = u_fwd + g_ndc.x * u_rx + g_ndc.y * u_uy;
+  vec3 d = ndc_ray(g_ndc);
   g_dl = length(d);
   g_dn = d / g_dl;
   vec3 q = u_eye - u_lpos;
