@@ -31,12 +31,15 @@ HERE = Path(__file__).resolve().parent
 class Context:
     """What every adapter needs: where things are, the mode, limits."""
 
-    def __init__(self, root, build, mode="quick", timeout=None, say=print):
+    def __init__(self, root, build, mode="quick", timeout=None, say=print, warm_frames=0):
         self.root = Path(root).resolve()
         self.build = Path(build).resolve()
         self.mode = mode
         self.timeout = timeout or (900 if mode == "quick" else 3600)
         self.say = say
+        # Renderers that can also render in-process (gl_shafts) time that
+        # many warm frames after each run (0: only the command line).
+        self.warm_frames = warm_frames
         self._versions = {}
 
     def tool(self, rel):
@@ -232,6 +235,8 @@ class GlShafts(Adapter):
              "per fragment (--xi exact) or on the lattice (the paper's "
              "method) at several lattice sizes, and --jitter")
     TOOL = "gl_shafts/gl_shafts"
+    # The in-process bench: the warm frame (docs/gl_shafts.md).
+    BENCH = "gl_shafts/gl_shafts_bench"
     # 1.5 s for 320x240 at 100 planes, most of it starting llvmpipe and
     # compiling shaders; 250 MB resident. Work: planes / 100.
     startup_seconds = 5.0
@@ -260,7 +265,11 @@ class GlShafts(Adapter):
         return None
 
     def version(self, ctx):
-        return _build_version(ctx, self.TOOL)
+        if not ctx.warm_frames:
+            return _build_version(ctx, self.TOOL)
+        # The warm frame is part of what a run records.
+        return "%s; warm frame: %s, median of %d" % (
+            _build_version(ctx, self.TOOL), _build_version(ctx, self.BENCH), ctx.warm_frames)
 
     def settings(self, ctx, scene):
         sweep = self.SWEEP[ctx.mode]
@@ -276,19 +285,63 @@ class GlShafts(Adapter):
         return [("user", "default", {}),
                 ("converged", "planes 400, xi exact", {"planes": 400, "xi": "exact"})]
 
+    @staticmethod
+    def _options(params):
+        """The settings as options, the same for gl_shafts and its bench."""
+        opts = []
+        if "planes" in params:
+            opts += ["--planes", params["planes"]]
+        if "lattice" in params:
+            opts += ["--lattice", params["lattice"][0], params["lattice"][1]]
+        if "xi" in params:
+            opts += ["--xi", params["xi"]]
+        if params.get("jitter"):
+            opts += ["--jitter"]
+        return opts
+
     def render(self, ctx, scene_path, params, work, log):
+        """The image and the first image's time from the command line
+        (tool_seconds: what a one-off user waits for, shader compilation
+        included); with ctx.warm_frames, also the warm frame of the same
+        setting rendered in-process (warm_seconds: the median of that many
+        frames after a warm-up one, what a viewport or an animation pays per
+        frame)."""
         out, stats = work / "out.exr", work / "stats.json"
         cmd = [ctx.tool(self.TOOL), scene_path, "-o", out, "--stats", stats, "-q"]
-        if "planes" in params:
-            cmd += ["--planes", params["planes"]]
-        if "lattice" in params:
-            cmd += ["--lattice", params["lattice"][0], params["lattice"][1]]
-        if "xi" in params:
-            cmd += ["--xi", params["xi"]]
-        if params.get("jitter"):
-            cmd += ["--jitter"]
-        wall, _ = command(cmd, cwd=work, timeout=ctx.timeout, log=log)
-        return {"image": out, "wall_seconds": wall, "tool_seconds": _stats_seconds(stats)}
+        wall, _ = command(cmd + self._options(params), cwd=work, timeout=ctx.timeout, log=log)
+        result = {"image": out, "wall_seconds": wall, "tool_seconds": _stats_seconds(stats)}
+        if ctx.warm_frames:
+            result.update(self._warm(ctx, scene_path, params, work, log))
+        return result
+
+    def _warm(self, ctx, scene_path, params, work, log):
+        """warm_seconds and warm_best_seconds from gl_shafts_bench, or a
+        note why there are none (the image still counts)."""
+        cmd = [ctx.tool(self.BENCH), scene_path, "--frames", ctx.warm_frames,
+               "--ref-spp", 0] + self._options(params)
+        try:
+            _, text = command(cmd, cwd=work, timeout=ctx.timeout, log=log)
+        except RunFailed as e:
+            return {"notes": "no warm frame: %s" % e}
+        times = _bench_frame_ms(text)
+        if times is None:
+            return {"notes": "no warm frame: gl_shafts_bench printed no frame time"}
+        return {"warm_best_seconds": times[0] / 1000.0, "warm_seconds": times[1] / 1000.0}
+
+
+def _bench_frame_ms(text):
+    """(best, median) milliseconds per frame from gl_shafts_bench's table
+    (its column "ms/frame: best (median)"), or None."""
+    rows = [[c.strip() for c in line.strip().strip("|").split("|")]
+            for line in text.splitlines() if line.startswith("|")]
+    if len(rows) < 3:
+        return None
+    try:
+        col = rows[0].index("ms/frame: best (median)")
+        m = re.match(r"([\d.]+)\s*\(([\d.]+)\)", rows[2][col])
+    except (ValueError, IndexError):
+        return None
+    return (float(m.group(1)), float(m.group(2))) if m else None
 
 
 # ---------------------------------------------------------------------------

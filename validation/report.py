@@ -17,6 +17,10 @@ from .metrics import fmt_percent, fmt_seconds
 
 THRESHOLDS = (0.01, 0.02, 0.05)
 
+# The key suffix of a renderer's warm-frame series (gl_shafts in-process)
+# in a scene's time_to tables; the renderer's own key is its first image.
+WARM = ":warm"
+
 CSS = """
 body { font-family: sans-serif; margin: 1.5em; color: #222; max-width: 1400px; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
@@ -24,9 +28,12 @@ table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.9em; }
 th, td { border: 1px solid #ddd; padding: 3px 7px; text-align: left; vertical-align: top; }
 th { background: #f4f4f4; } td.num { text-align: right; font-variant-numeric: tabular-nums; }
 .strip { display: flex; flex-wrap: wrap; gap: 10px; }
-.strip figure { margin: 0; font-size: 0.8em; max-width: 330px; }
-.strip img { display: block; image-rendering: pixelated; max-width: 320px; }
-img.thumb { height: 60px; image-rendering: pixelated; }
+.strip figure { margin: 0; font-size: 0.85em; width: 480px; }
+.strip img { display: block; image-rendering: pixelated; width: 480px; height: auto; }
+img.thumb { height: 96px; image-rendering: pixelated; display: block; }
+.hover { position: relative; display: inline-block; }
+.hover img.diff { position: absolute; top: 0; left: 0; opacity: 0; }
+.hover:hover img.diff { opacity: 1; }
 .fail { color: #b00; font-weight: bold; } .ok { color: #070; } .note { color: #666; }
 .swatch { display: inline-block; width: 0.9em; height: 0.9em; margin-right: 4px; }
 """
@@ -53,6 +60,26 @@ def _time_of(run):
     return t if t is not None else run.get("wall_seconds")
 
 
+def series_label(rix, key, keys):
+    """The label of a time_to key: the renderer's, and for a renderer timed
+    both ways ("NAME" and "NAME:warm" among `keys`) which way."""
+    base = key[:-len(WARM)] if key.endswith(WARM) else key
+    label = rix[base]["label"] if base in rix else base
+    if key.endswith(WARM):
+        return label + ", warm frame"
+    if base + WARM in keys:
+        return label + ", first image"
+    return label
+
+
+def _times_text(run):
+    """A run's time for captions: its own, and its warm frame if timed."""
+    text = fmt_seconds(_time_of(run))
+    if run.get("warm_seconds") is not None:
+        text = "%s (first image), %s warm" % (text, fmt_seconds(run["warm_seconds"]))
+    return text
+
+
 def renderer_index(results):
     return {r["name"]: r for r in results["renderers"]}
 
@@ -75,10 +102,22 @@ def _figure(src, caption, base):
             % (_rel(src, base), _rel(src, base), _e(caption), caption))
 
 
-def _thumb(src, base):
+def _thumb(src, base, diff=None):
+    """A small image linking to itself; with `diff`, the pointer over it
+    shows the difference image in its place."""
     if not src:
         return ""
+    if diff:
+        return _hover(src, diff, base, "thumb")
     return '<a href="%s"><img class="thumb" src="%s" alt=""></a>' % (_rel(src, base), _rel(src, base))
+
+
+def _hover(src, diff, base, cls=""):
+    """An image that shows its difference image while the pointer is over
+    it (CSS only: the page stays static)."""
+    return ('<a class="hover" href="%s" title="pointer over: the difference from the '
+            'reference"><img class="%s" src="%s" alt=""><img class="diff %s" src="%s" '
+            'alt=""></a>' % (_rel(src, base), cls, _rel(src, base), cls, _rel(diff, base)))
 
 
 def _time_to_cells(tt):
@@ -110,7 +149,13 @@ def _header(results):
            "peak, <b>scale</b> is the image's summed luminance over the reference's on the lit "
            "region (1 when right on average). Times are the renderer's own figure where it "
            "reports one (else the wall time the validation measured): the plots and the "
-           "summary use them. Difference images: red where the image is brighter than the "
+           "summary use them. gl_shafts is timed both ways: its <b>first image</b> from the "
+           "command line (shader compilation included: what a one-off user waits for) and "
+           "its <b>warm frame</b> rendered in-process by gl_shafts_bench (the median of a few "
+           "frames after a warm-up one: what a viewport or an animation pays per frame); the "
+           "plots (warm frame solid, first image dashed) and the tables show both. "
+           "The pointer over a rendering shows its difference image in its place. "
+           "Difference images: red where the image is brighter than the "
            "reference, blue where darker, green for NaN, infinite or negative values; full "
            "intensity is a tenth of the reference's 99th-percentile luminance.</p>"
            % (results["reference_spp"], results["lit"])]
@@ -153,7 +198,7 @@ def _summary_table(results):
             masked = s.get("time_to_masked", {}).get(name)
             out.append("<tr><td>%s</td><td>%s</td>%s%s</tr>" % (
                 '<a href="#scene-%s">%s</a>' % (_e(s["name"]), _e(s["name"])) if first else "",
-                _e(rix[name]["label"]), _time_to_cells(tt),
+                _e(series_label(rix, name, s["time_to"])), _time_to_cells(tt),
                 _time_to_cells(masked) if masked else '<td colspan=4 class="note">no light in view</td>'))
             first = False
     out.append("</table>")
@@ -183,11 +228,11 @@ def _scene_section(s, results, base):
     for name, run in _best_runs(s).items():
         cap = "%s, %s: %s in %s" % (_e(rix[name]["label"]), _e(run["label"]),
                                     _e(fmt_percent(run["metrics"]["rel_rms"])),
-                                    _e(fmt_seconds(_time_of(run))))
-        figs.append('<figure><a href="%s"><img src="%s" alt=""></a><a href="%s"><img src="%s" '
-                    'alt=""></a><figcaption>%s (least error; below, its difference)</figcaption>'
-                    '</figure>' % (_rel(run["png"], base), _rel(run["png"], base),
-                                   _rel(run["diff_png"], base), _rel(run["diff_png"], base), cap))
+                                    _e(_times_text(run)))
+        figs.append('<figure>%s<figcaption>%s (least error; the pointer over the image '
+                    'shows <a href="%s">its difference</a>)</figcaption></figure>'
+                    % (_hover(run["png"], run["diff_png"], base), cap,
+                       _rel(run["diff_png"], base)))
     out.append('<div class="strip">%s</div>' % "".join(figs))
     plots = '<img src="%s" alt="speed against error, %s">' % (_rel(s["plot"], base), _e(s["name"]))
     if s.get("plot_masked"):
@@ -201,10 +246,12 @@ def _scene_section(s, results, base):
     out.append("<table><tr><th>renderer</th><th>1%%</th><th>2%%</th><th>5%%</th><th>least error</th>%s</tr>"
                % ("<th>1%, away from lights</th><th>2%</th><th>5%</th><th>least error</th>" if masked else ""))
     for name, tt in s["time_to"].items():
-        out.append("<tr><td>%s</td>%s%s</tr>" % (_e(rix[name]["label"]), _time_to_cells(tt),
+        out.append("<tr><td>%s</td>%s%s</tr>" % (_e(series_label(rix, name, s["time_to"])),
+                                                 _time_to_cells(tt),
                                                  _time_to_cells(masked[name]) if masked else ""))
     out.append("</table>")
-    out.append("<table><tr><th>renderer</th><th>setting</th><th>time</th><th>wall</th><th>error</th>%s"
+    out.append("<table><tr><th>renderer</th><th>setting</th><th>time</th><th>warm frame</th>"
+               "<th>wall</th><th>error</th>%s"
                "<th>mean rel.</th><th>PSNR</th><th>max abs.</th><th>scale</th><th>bad</th>"
                "<th>image</th><th>difference</th></tr>"
                % ("<th>error away from lights</th>" if masked else ""))
@@ -212,17 +259,21 @@ def _scene_section(s, results, base):
         label = _e(rix[run["renderer"]]["label"])
         if run["status"] != "ok" or not run.get("metrics"):
             out.append('<tr><td>%s</td><td>%s</td><td colspan=%d class="fail">failed: %s</td></tr>'
-                       % (label, _e(run["label"]), 11 if masked else 10,
+                       % (label, _e(run["label"]), 12 if masked else 11,
                           _e(run.get("error") or run.get("compare_error"))))
             continue
         m = run["metrics"]
         mm = run.get("metrics_masked")
         out.append("<tr><td>%s</td><td>%s%s</td><td class=num>%s</td><td class=num>%s</td>"
+                   "<td class=num>%s</td>"
                    "<td class=num>%s</td>%s<td class=num>%s</td><td class=num>%s</td>"
                    "<td class=num>%s</td><td class=num>%s</td><td class=num>%s</td>"
                    "<td>%s</td><td>%s</td></tr>" % (
                        label, _e(run["label"]), ' <span class="note">(cached)</span>' if run.get("cached") else "",
-                       _e(fmt_seconds(run.get("tool_seconds"))), _e(fmt_seconds(run.get("wall_seconds"))),
+                       _e(fmt_seconds(run.get("tool_seconds"))),
+                       _e(fmt_seconds(run.get("warm_seconds")) if run.get("warm_seconds") is not None
+                          else ""),
+                       _e(fmt_seconds(run.get("wall_seconds"))),
                        _e(fmt_percent(m["rel_rms"])),
                        "<td class=num>%s</td>" % _e(fmt_percent(mm["rel_rms"])) if masked and mm
                        else ("<td></td>" if masked else ""),
@@ -230,7 +281,8 @@ def _scene_section(s, results, base):
                        "%.1f dB" % m["psnr"] if m.get("psnr") is not None else "identical",
                        _num(m.get("max_abs"), "%.3g"), _num(m.get("scale"), "%.4f"),
                        '<span class="fail">%d</span>' % m["bad_values"] if m["bad_values"] else "0",
-                       _thumb(run.get("png"), base), _thumb(run.get("diff_png"), base)))
+                       _thumb(run.get("png"), base, run.get("diff_png")),
+                       _thumb(run.get("diff_png"), base)))
     out.append("</table>")
     return out
 
@@ -314,7 +366,8 @@ def _hard_section(hc, results, base):
                            _check_text(err) if err else "",
                            "<br>".join("%s: %s" % (_e(k["name"]), _check_text(k)) for k in inv),
                            _e(fmt_seconds(r.get("seconds"))),
-                           _thumb(r.get("png"), base), _thumb(r.get("diff_png"), base)))
+                           _thumb(r.get("png"), base, r.get("diff_png")),
+                           _thumb(r.get("diff_png"), base)))
         out.append("</table>")
     return out
 
@@ -350,8 +403,9 @@ def summary_markdown(results):
            "Written by `python3 -m validation.validate --%s` on %s (%s, %d CPU threads; its runs "
            "take %s of rendering from an empty cache; this one took %s with %d runs "
            "rendered and %d from the cache). Errors are relative RMS over the lit region "
-           "against lmm_tracer's reference at %d spp; times are the renderers' own "
-           "(docs/validation.md)."
+           "against lmm_tracer's reference at %d spp; times are the renderers' own, "
+           "gl_shafts' both ways: its first image from the command line and its warm "
+           "in-process frame (docs/validation.md)."
            % (results["mode"], results["date"], m.get("cpu", "unknown CPU"), m.get("threads", 0),
               fmt_seconds(results.get("render_seconds")),
               fmt_seconds(results.get("elapsed_seconds")), results.get("rendered", 0),
@@ -383,7 +437,7 @@ def summary_markdown(results):
                 b = tt.get("best") if tt else None
                 return "%s (%s)" % (fmt_percent(b[0]), fmt_seconds(b[1])) if b else "–"
             out.append("| %s | %dx%d | %s | %s | %s | %s | %s |" % (
-                s["name"], s["width"], s["height"], rix[name]["label"],
+                s["name"], s["width"], s["height"], series_label(rix, name, s["time_to"]),
                 *[cell(th) for th in THRESHOLDS],
                 best_text(tt) + (" [%s]" % best_text(masked) if masked else "")))
     out += ["", "## Every run", ""]
@@ -397,18 +451,20 @@ def summary_markdown(results):
                 "Reference: %s, %s." % (s["reference"]["label"],
                                         fmt_seconds(s["reference"].get("tool_seconds"))), "",
                 plots, "",
-                "| renderer | setting | time | error | away from lights | PSNR | max abs. | scale |",
-                "|---|---|---:|---:|---:|---:|---:|---:|"]
+                "| renderer | setting | time | warm frame | error | away from lights | PSNR "
+                "| max abs. | scale |",
+                "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
         for run in s["runs"]:
             mm = run.get("metrics")
             if run["status"] != "ok" or not mm:
-                out.append("| %s | %s | failed: %s | | | | | |" % (
+                out.append("| %s | %s | failed: %s | | | | | | |" % (
                     rix[run["renderer"]]["label"], run["label"],
                     (run.get("error") or run.get("compare_error") or "").replace("|", "/")[:200]))
                 continue
             masked = run.get("metrics_masked")
-            out.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
                 rix[run["renderer"]]["label"], run["label"], fmt_seconds(_time_of(run)),
+                fmt_seconds(run["warm_seconds"]) if run.get("warm_seconds") is not None else "",
                 fmt_percent(mm["rel_rms"]), fmt_percent(masked["rel_rms"]) if masked else "",
                 "%.1f dB" % mm["psnr"] if mm.get("psnr") is not None else "identical",
                 _num(mm.get("max_abs"), "%.3g"), _num(mm.get("scale"), "%.3f")))

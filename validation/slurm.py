@@ -177,6 +177,7 @@ class SlurmExecutor:
                 stale.unlink()
         header = {"root": str(self.ctx.root), "build": str(self.ctx.build),
                   "mode": self.ctx.mode, "timeout": self.ctx.timeout,
+                  "warm_frames": self.ctx.warm_frames,
                   "cache": str(self.cache.root.resolve()),
                   "versions": {r.adapter.name: r.version
                                for r in todo.values()}}

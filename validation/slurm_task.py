@@ -59,7 +59,8 @@ def load(manifest_path):
     except OSError as e:
         fail(NO_CACHE, "cannot write the run cache %s: %s" % (cache, e))
     ctx = renderers.Context(head["root"], head["build"], mode=head["mode"],
-                            timeout=head["timeout"], say=print)
+                            timeout=head["timeout"], say=print,
+                            warm_frames=head.get("warm_frames", 0))
     return manifest, ctx, RunCache(cache)
 
 

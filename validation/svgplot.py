@@ -13,8 +13,8 @@ from xml.sax.saxutils import escape
 
 from .metrics import fmt_percent, fmt_seconds, pareto_front
 
-WIDTH, HEIGHT = 680, 420
-LEFT, RIGHT, TOP, BOTTOM = 70, 180, 34, 52
+WIDTH, HEIGHT = 760, 440
+LEFT, RIGHT, TOP, BOTTOM = 70, 230, 34, 52
 FLOOR = 1e-6  # errors below this (identical images) are drawn at it
 LEVELS = (0.01, 0.02, 0.05)
 
@@ -26,6 +26,10 @@ def _decades(lo, hi):
     if b <= a:
         b = a + 1
     return a, b
+
+
+# A series drawn dashed (a renderer's second timing: gl_shafts' first image).
+_DASH = ' stroke-dasharray="5,3"'
 
 
 def _decade(exp):
@@ -41,7 +45,8 @@ def _fmt_tick(exp, unit):
 
 def speed_error_svg(series, title):
     """The plot as SVG text. `series`: list of dicts with label, colour and
-    points [(seconds, error, tooltip)]; points with None are skipped."""
+    points [(seconds, error, tooltip)], and optionally dashed (True: the
+    line is dashed); points with None are skipped."""
     pts = [(t, max(e, FLOOR), tip) for s in series for (t, e, tip) in s["points"]
            if t is not None and e is not None and t > 0]
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" '
@@ -108,8 +113,9 @@ def speed_error_svg(series, title):
             continue
         f = pareto_front(own)
         if len(f) > 1:
-            out.append('<polyline points="%s" fill="none" stroke="%s" stroke-width="2"/>'
-                       % (" ".join("%.1f,%.1f" % (X(t), Y(e)) for t, e, _ in f), s["colour"]))
+            out.append('<polyline points="%s" fill="none" stroke="%s" stroke-width="2"%s/>'
+                       % (" ".join("%.1f,%.1f" % (X(t), Y(e)) for t, e, _ in f), s["colour"],
+                          _DASH if s.get("dashed") else ""))
         for t, e, tip in own:
             out.append('<circle cx="%.1f" cy="%.1f" r="3.5" fill="%s"><title>%s: %s, '
                        '%s, %s</title></circle>'
@@ -122,8 +128,8 @@ def speed_error_svg(series, title):
         if not any(t is not None and e is not None for t, e, _ in s["points"]):
             continue
         x = LEFT + pw + 34
-        out.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="2"/>'
-                   % (x, ly, x + 18, ly, s["colour"]))
+        out.append('<line x1="%d" y1="%d" x2="%d" y2="%d" stroke="%s" stroke-width="2"%s/>'
+                   % (x, ly, x + 18, ly, s["colour"], _DASH if s.get("dashed") else ""))
         out.append('<circle cx="%d" cy="%d" r="3.5" fill="%s"/>' % (x + 9, ly, s["colour"]))
         out.append('<text x="%d" y="%d">%s</text>' % (x + 24, ly + 4, escape(s["label"])))
         ly += 18

@@ -298,6 +298,24 @@ class SlurmPartsTest(unittest.TestCase):
         self.assertGreater(eevee.limits(ctx, Scene, {"tile": 8, "samples": 32,
                                                     "shadow_samples": 16, "taa": 1})[1], mb)
 
+class WarmFrameTest(unittest.TestCase):
+    """gl_shafts timed both ways: the bench's table read, the series named."""
+
+    def test_bench_table_and_labels(self):
+        text = ("rendering...\n"
+                "| scene | size | planes | ms/frame: best (median) | CPU ms/frame | first frame "
+                "ms (with context) | backend: GL_RENDERER (GL_VENDOR) |\n"
+                "|---|---|---|---|---|---|---|\n"
+                "| teapot_spot.json | 160x120 | 25 | 36.0 (51.9) | 18.1 | 1630.1 | egl: "
+                "llvmpipe (LLVM 15.0.6, 256 bits) (Mesa/X.org) |\n")
+        self.assertEqual(renderers._bench_frame_ms(text), (36.0, 51.9))
+        self.assertIsNone(renderers._bench_frame_ms("| a |\n|---|\n| 1 |\n"))
+        rix = {"gl_shafts": {"label": "gl_shafts"}, "cycles": {"label": "Cycles"}}
+        keys = ["gl_shafts:warm", "gl_shafts", "cycles"]
+        self.assertEqual([report.series_label(rix, k, keys) for k in keys],
+                         ["gl_shafts, warm frame", "gl_shafts, first image", "Cycles"])
+
+
 class ProgressTest(unittest.TestCase):
     """The progress messages: counts, the case's name, the time left."""
 
