@@ -547,8 +547,102 @@ class Eevee(_Blender):
                                  env=env, pre=[EEVEE_SCRIPT])
 
 
+# ---------------------------------------------------------------------------
+# The Blender add-on's engines: the scene imported as a user imports it,
+# rendered by F12 inside Blender (validation/blender_addon_render.py).
+
+ADDON_SCRIPT = HERE / "blender_addon_render.py"
+
+
+class _Addon(Adapter):
+    """Shared by the add-on's two engines."""
+
+    ZIP = "shafts_blender.zip"
+    LIB = "libshafts.so"
+    ENGINE = ""
+    startup_seconds = 10.0
+    memory_mb = 1024
+    min_image_side = _Blender.min_image_side
+    min_image_why = _Blender.min_image_why
+
+    def missing(self, ctx):
+        for rel in (self.ZIP, self.LIB):
+            if not ctx.tool(rel).is_file():
+                return "%s is not built (make addon)" % ctx.tool(rel)
+        if not shutil.which("blender"):
+            return "blender is not installed (tools/bootstrap.sh installs it)"
+        return None
+
+    def version(self, ctx):
+        return "%s; add-on %s; libshafts %s; script %s" % (
+            _system_version(ctx, "blender"), _build_version(ctx, self.ZIP),
+            _build_version(ctx, self.LIB), file_fingerprint(ADDON_SCRIPT))
+
+    def render(self, ctx, scene_path, params, work, log):
+        out, settings = work / "out.exr", work / "settings.json"
+        settings.write_text(json.dumps(params))
+        # Debian's Blender finds its Python's library through the first
+        # python3 on PATH: another one first (pyenv's) hides the system's
+        # numpy, which the add-on imports. The directory of blender comes
+        # first, so Blender gets the Python it was built with.
+        blender_dir = os.path.dirname(os.path.realpath(shutil.which("blender")))
+        env = {"BLENDER_USER_SCRIPTS": str(work / "scripts"),
+               "BLENDER_USER_CONFIG": str(work / "config"),
+               "SHAFTS_LIB": str(ctx.tool(self.LIB)),
+               "PATH": blender_dir + os.pathsep + os.environ.get("PATH", "")}
+        (work / "scripts" / "addons").mkdir(parents=True)
+        (work / "config").mkdir()
+        cmd = ["blender", "-b", "--factory-startup", "--python-exit-code", 1,
+               "--python", ADDON_SCRIPT, "--", ctx.tool(self.ZIP), scene_path, out,
+               self.ENGINE, settings]
+        wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
+        if not out.exists():
+            raise RunFailed("blender wrote no image")
+        m = re.findall(r"^shafts_addon_render_seconds: ([\d.]+)", text, re.M)
+        return {"image": out, "wall_seconds": wall,
+                "tool_seconds": float(m[-1]) if m else None}
+
+
+class AddonSweep(_Addon):
+    name = "addon_sweep"
+    label = "add-on: Shafts Sweep"
+    colour = "#8c564b"
+    about = ("the Blender add-on's Shafts Sweep engine (gl_shafts in Blender): the "
+             "scene imported with File > Import > Shafts scene, F12 at the engine's "
+             "defaults; its time is F12 alone")
+    ENGINE = "SHAFTS_SWEEP"
+
+    def settings(self, ctx, scene):
+        return [("default", {})]
+
+    def hard_case_settings(self, ctx):
+        return [("user", "default", {})]
+
+
+class AddonTracer(_Addon):
+    name = "addon_tracer"
+    label = "add-on: Shafts Tracer"
+    colour = "#e377c2"
+    about = ("the Blender add-on's Shafts Tracer engine (lmm_tracer in Blender), "
+             "reference mode, the scene imported with File > Import > Shafts scene; "
+             "its time is F12 alone")
+    ENGINE = "SHAFTS_TRACER"
+    seconds_per_megapixel = 2.0
+    SPP = {"quick": (16,), "full": (16, 64)}
+
+    def work(self, params):
+        return float(params.get("spp", 16))
+
+    def settings(self, ctx, scene):
+        return [("reference, spp %d" % n, {"mode": "REFERENCE", "spp": n})
+                for n in self.SPP[ctx.mode]]
+
+    def hard_case_settings(self, ctx):
+        return [("user", "reference, spp 16", {"mode": "REFERENCE", "spp": 16})]
+
+
 # The table: every renderer the validation knows, in the report's order.
-ADAPTERS = [LmmTracer(), GlShafts(), PovRay(), Cycles(), Eevee()]
+ADAPTERS = [LmmTracer(), GlShafts(), PovRay(), Cycles(), Eevee(), AddonSweep(), AddonTracer()]
 REFERENCE = ADAPTERS[0]
 
 
