@@ -25,6 +25,7 @@ typedef struct blend {
   const char *dir;  /* the output's directory, with its slash, dir_len long */
   int dir_len;
   se_output *out;
+  se_notes eevee; /* what EEVEE alone approximates: the data's eevee_notes */
 } blend;
 
 /* Scene space (Y up) to Blender's (Z up), metres = scene units
@@ -99,11 +100,67 @@ static sh_image *spot_profile_image(const sh_light *l, double *k) {
   return img;
 }
 
+/* Adds an image file NAME_<stem><i>.exr (owned: the output frees it; else
+ * borrowed) to the output and the data's images; returns its index, or -1
+ * if out of memory. */
+static int add_image(blend *b, const char *stem, int i, const sh_image *img, sh_image *owned,
+                     json_t *images) {
+  char file[600], path[1200];
+  snprintf(file, sizeof file, "%s_%s%d.exr", b->name, stem, i);
+  snprintf(path, sizeof path, "%.*s%s", b->dir_len, b->dir, file);
+  if (!(owned ? se_output_owned_image(b->out, path, owned) : se_output_image(b->out, path, img)))
+    return -1;
+  json_array_append_new(images, json_pack("{s:s}", "file", file));
+  return (int)json_array_size(images) - 1;
+}
+
+/* Adds light l's card with the given image to the data's cards, for one
+ * engine ("cycles", "eevee") or, engine NULL, both; a window's card comes
+ * with its wall. */
+static void add_card(blend *b, const sh_light *l, int image, const char *engine,
+                     json_t *cards) {
+  se_card c;
+  json_t *wall = NULL;
+  if (l->type == SH_LIGHT_SPOT) {
+    c = se_spot_card(l, 2e-3 * b->radius);
+  } else {
+    se_window w = se_window_card(l, b->center, b->radius);
+    c = w.card;
+    /* The wall: the rectangle around the window with the window cut out,
+     * eight vertices (outer 0-3, inner 4-7) and eight triangles. */
+    double x[2] = {w.wall_lo_x, w.wall_hi_x}, y[2] = {w.wall_lo_y, w.wall_hi_y};
+    sh_vec3 p[8] = {se_card_point(&c, x[0], y[0]), se_card_point(&c, x[1], y[0]),
+                    se_card_point(&c, x[1], y[1]), se_card_point(&c, x[0], y[1]),
+                    se_card_point(&c, 0, 0),       se_card_point(&c, 1, 0),
+                    se_card_point(&c, 1, 1),       se_card_point(&c, 0, 1)};
+    json_t *v = json_array(), *tri = json_array();
+    for (int k = 0; k < 8; k++) push_point(v, p[k]);
+    static const int idx[24] = {0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5,
+                                2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+    for (int k = 0; k < 24; k++) json_array_append_new(tri, json_integer(idx[k]));
+    wall = json_pack("{s:s, s:i, s:o, s:o}", "label", "wall", "image", -1, "vertices", v,
+                     "triangles", tri);
+  }
+  sh_vec3 p[4] = {se_card_point(&c, 0, 0), se_card_point(&c, 1, 0),
+                  se_card_point(&c, 1, 1), se_card_point(&c, 0, 1)};
+  json_t *v = json_array();
+  for (int k = 0; k < 4; k++) push_point(v, p[k]);
+  json_t *card = json_pack("{s:s, s:i, s:o, s:[iiiiii], s:[ffffffff]}", "label",
+                           "light map", "image", image, "vertices", v, "triangles", 0, 1, 2,
+                           0, 2, 3, "uvs", 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0);
+  if (engine) {
+    if (wall) json_object_set_new(wall, "engine", json_string(engine));
+    if (card) json_object_set_new(card, "engine", json_string(engine));
+  }
+  if (wall) json_array_append_new(cards, wall);
+  json_array_append_new(cards, card);
+}
+
 static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
   const sh_light *l = &b->scene->lights[i];
   sh_vec3 unit, t, bt;
   json_t *o;
-  sh_image *profile = NULL; /* a spot's profile card, when it needs one */
+  sh_image *profile = NULL; /* a spot's profile card for Cycles, when it needs one */
   if (l->type == SH_LIGHT_DIRECTIONAL) {
     double e = split_colour(l->irradiance, &unit);
     sh_basis(l->direction, &t, &bt);
@@ -141,7 +198,12 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
       double ci = cos(fmin(l->inner_deg, outer) * SH_PI / 180.0);
       double blend = co < 1.0 ? (ci - co) / (1.0 - co) : 0.0;
       /* Cycles 3.4 spots carry cos(theta), the format's exponent 1; another
-       * exponent takes a card that filters by cos(theta)^(exponent - 1). */
+       * exponent takes a card that filters by cos(theta)^(exponent - 1).
+       * EEVEE's spot is the plain smoothstep (lights_lib.glsl,
+       * spot_attenuation), the format's exponent 0, and a card acts on its
+       * surfaces only (shadow maps), not on its volume light: EEVEE gets
+       * neither the card nor its power factor. */
+      double e_eevee = e;
       if (l->exponent != 1.0 && outer <= 80.0) {
         double k;
         profile = spot_profile_image(l, &k);
@@ -155,62 +217,48 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
                 "cos(theta)^%g, a factor %.4g at the cone's edge).",
                 i, l->exponent, l->exponent - 1.0, pow(co, l->exponent - 1.0));
       }
+      if (l->exponent != 0.0)
+        se_note(&b->eevee,
+                "lights[%d]: EEVEE's spot has no cos(theta) term (the format's "
+                "exponent 0); the exponent %g is rendered as 0 (off by "
+                "cos(theta)^%g, a factor %.4g at the cone's edge).",
+                i, l->exponent, l->exponent, pow(co, l->exponent));
       sh_basis(l->direction, &t, &bt);
       o = json_pack("{s:s, s:o, s:o, s:f, s:f, s:f}", "type", "SPOT", "matrix",
                     frame(t, bt, sh_neg(l->direction), l->position), "color", vec(unit),
                     "energy", e, "spot_size", 2.0 * outer * SH_PI / 180.0, "spot_blend",
                     blend);
+      if (o && e_eevee != e) json_object_set_new(o, "eevee_energy", json_real(e_eevee));
     }
   }
-  if (!o || (!l->has_map && !profile)) {
+  if (!o) {
     if (profile) {
       sh_image_free(profile);
       free(profile);
     }
-    return o;
+    return NULL;
   }
-
-  /* The light map (or profile): an image file and a card. */
-  char file[600], path[1200];
-  snprintf(file, sizeof file, "%s_blender_map%d.exr", b->name, i);
-  snprintf(path, sizeof path, "%.*s%s", b->dir_len, b->dir, file);
-  int ok = profile ? se_output_owned_image(b->out, path, profile)
-                   : se_output_image(b->out, path, &l->map);
+  /* The light map, or the profile (times the map) for Cycles and the plain
+   * map for EEVEE: image files and cards. */
+  int ok = 1;
+  if (profile) {
+    int image = add_image(b, "blender_map", i, NULL, profile, images);
+    ok = image >= 0;
+    if (ok) add_card(b, l, image, "cycles", cards);
+    if (ok && l->has_map) {
+      image = add_image(b, "blender_eevee_map", i, &l->map, NULL, images);
+      ok = image >= 0;
+      if (ok) add_card(b, l, image, "eevee", cards);
+    }
+  } else if (l->has_map) {
+    int image = add_image(b, "blender_map", i, &l->map, NULL, images);
+    ok = image >= 0;
+    if (ok) add_card(b, l, image, NULL, cards);
+  }
   if (!ok) {
     json_decref(o);
     return NULL;
   }
-  json_array_append_new(images, json_pack("{s:s}", "file", file));
-  int image = (int)json_array_size(images) - 1;
-  se_card c;
-  if (l->type == SH_LIGHT_SPOT) {
-    c = se_spot_card(l, 2e-3 * b->radius);
-  } else {
-    se_window w = se_window_card(l, b->center, b->radius);
-    c = w.card;
-    /* The wall: the rectangle around the window with the window cut out,
-     * eight vertices (outer 0-3, inner 4-7) and eight triangles. */
-    double x[2] = {w.wall_lo_x, w.wall_hi_x}, y[2] = {w.wall_lo_y, w.wall_hi_y};
-    sh_vec3 p[8] = {se_card_point(&c, x[0], y[0]), se_card_point(&c, x[1], y[0]),
-                    se_card_point(&c, x[1], y[1]), se_card_point(&c, x[0], y[1]),
-                    se_card_point(&c, 0, 0),       se_card_point(&c, 1, 0),
-                    se_card_point(&c, 1, 1),       se_card_point(&c, 0, 1)};
-    json_t *v = json_array(), *tri = json_array();
-    for (int k = 0; k < 8; k++) push_point(v, p[k]);
-    static const int idx[24] = {0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5,
-                                2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
-    for (int k = 0; k < 24; k++) json_array_append_new(tri, json_integer(idx[k]));
-    json_array_append_new(cards, json_pack("{s:s, s:i, s:o, s:o}", "label", "wall",
-                                           "image", -1, "vertices", v, "triangles", tri));
-  }
-  sh_vec3 p[4] = {se_card_point(&c, 0, 0), se_card_point(&c, 1, 0),
-                  se_card_point(&c, 1, 1), se_card_point(&c, 0, 1)};
-  json_t *v = json_array();
-  for (int k = 0; k < 4; k++) push_point(v, p[k]);
-  json_array_append_new(cards, json_pack("{s:s, s:i, s:o, s:[iiiiii], s:[ffffffff]}",
-                                         "label", "light map", "image", image, "vertices", v,
-                                         "triangles", 0, 1, 2, 0, 2, 3, "uvs", 0.0, 0.0,
-                                         1.0, 0.0, 1.0, 1.0, 0.0, 1.0));
   return o;
 }
 
@@ -328,38 +376,49 @@ static json_t *medium(blend *b) {
             "lobe, g = %.4g, its mean cosine%s.",
             se_phase_name(m->phase.type), g1,
             m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
-  /* n lobes of density sigma_s / n^2 (Cycles sums their phases unweighted,
-   * se_cycles_phase.h) and the scattering they leave out, sigma_s (1 - 1/n), as
-   * absorption. */
-  json_t *scatter = json_array();
-  for (int i = 0; ds > 0 && i < n; i++)
-    json_array_append_new(scatter, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
-                                             "density", ds / ((double)n * n),
-                                             "anisotropy", gs[i]));
-  json_t *o = json_pack("{s:o, s:o, s:o}", "min", vec(blo), "max", vec(bhi), "scatter",
-                        scatter);
-  sh_vec3 sa = sh_add(m->sigma_a, sh_scale(m->sigma_s, 1.0 - 1.0 / n));
-  double da = sh_max3(sa);
-  if (o && da > 0)
-    json_object_set_new(o, "absorption",
-                        json_pack("{s:o, s:f}", "color",
-                                  vec(sh_sub(sh_v3s(1.0), sh_scale(sa, 1.0 / da))),
-                                  "density", da));
+  /* One Principled Volume for both engines (Cycles' svm_node_principled_volume
+   * and EEVEE's node_volume_principled compute the same coefficients):
+   * sigma_s = Color Density, sigma_a = (1 - Color) (1 - sqrt(Absorption
+   * Color)) Density, Henyey-Greenstein g = Anisotropy. With Density the
+   * largest extinction, Color = sigma_s / Density <= 1, and sqrt(Absorption
+   * Color) = 1 - sigma_a / (Density - sigma_s) per channel (any value where
+   * Density = sigma_s, which leaves no absorption). One closure, so EEVEE
+   * keeps g (it averages the g of closures joined by an Add Shader, the
+   * absorption's 0 included). */
+  sh_vec3 st = sh_add(m->sigma_s, m->sigma_a);
+  double dt = sh_max3(st);
+  double c[3], ac[3];
+  for (int k = 0; k < 3; k++) {
+    double ss = sh_vget(m->sigma_s, k), sa = sh_vget(m->sigma_a, k);
+    c[k] = dt > 0 ? fmin(ss / dt, 1.0) : 0.0;
+    double room = dt - ss; /* what the channel's absorption may take */
+    double root = room > 0 ? fmax(1.0 - sa / room, 0.0) : 1.0;
+    ac[k] = root * root;
+  }
+  json_t *o = json_pack("{s:o, s:o, s:o, s:{s:[fff], s:f, s:[fff], s:f}}", "min", vec(blo),
+                        "max", vec(bhi), "sigma_t", vec(st), "volume", "color", c[0], c[1],
+                        c[2], "density", dt, "absorption_color", ac[0], ac[1], ac[2],
+                        "anisotropy", g1);
   if (o && n > 1) {
-    /* EEVEE adds the scattering of its closures and averages their g: it
-     * gets the single lobe of the mean cosine. */
-    json_t *e = json_array();
-    if (ds > 0)
-      json_array_append_new(e, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
-                                         "density", ds, "anisotropy", g1));
-    json_t *eo = json_pack("{s:o}", "scatter", e);
-    double ea = sh_max3(m->sigma_a);
-    if (eo && ea > 0)
-      json_object_set_new(eo, "absorption",
+    /* Cycles' mixture: n Volume Scatter lobes of density sigma_s / n^2 (it
+     * sums their phases unweighted, se_cycles_phase.h) and the scattering
+     * they leave out, sigma_s (1 - 1/n), as Volume Absorption. EEVEE, which
+     * averages the g of added closures, keeps the Principled Volume with the
+     * mean cosine. */
+    json_t *scatter = json_array();
+    for (int i = 0; ds > 0 && i < n; i++)
+      json_array_append_new(scatter, json_pack("{s:o, s:f, s:f}", "color", vec(unit),
+                                               "density", ds / ((double)n * n),
+                                               "anisotropy", gs[i]));
+    json_t *mix = json_pack("{s:o}", "scatter", scatter);
+    sh_vec3 sa = sh_add(m->sigma_a, sh_scale(m->sigma_s, 1.0 - 1.0 / n));
+    double da = sh_max3(sa);
+    if (mix && da > 0)
+      json_object_set_new(mix, "absorption",
                           json_pack("{s:o, s:f}", "color",
-                                    vec(sh_sub(sh_v3s(1.0), sh_scale(m->sigma_a, 1.0 / ea))),
-                                    "density", ea));
-    if (eo) json_object_set_new(o, "eevee", eo);
+                                    vec(sh_sub(sh_v3s(1.0), sh_scale(sa, 1.0 / da))),
+                                    "density", da));
+    if (mix) json_object_set_new(o, "cycles_mixture", mix);
   }
   return o;
 }
@@ -383,7 +442,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   name[name_len] = '\0';
   se_plain_name(name, name, name_len + 1);
   blend b = {scene, opt, notes, {0, 0, 0}, 0, name, py_path,
-             (int)(base - py_path), out};
+             (int)(base - py_path), out, {0}};
   se_bounding_sphere(scene, &b.center, &b.radius);
 
   json_t *images = json_array(), *cards = json_array(), *lights = json_array();
@@ -426,6 +485,21 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       json_array_append_new(nt, t);
     }
     json_object_set_new(root, "notes", nt);
+    /* What EEVEE alone approximates (the script prints these when it
+     * renders with EEVEE; they are no approximation of the export, so
+     * --strict does not refuse them). */
+    if (scene->medium.present && scene->nlights > 1)
+      se_note(&b.eevee,
+              "EEVEE does not attenuate the light reaching a surface through the "
+              "medium, and with one light the script multiplies the surfaces' "
+              "diffuse and glossy colours by that light's transmittance; with %d "
+              "lights it cannot, so surfaces in or behind the medium are too bright.",
+              scene->nlights);
+    json_t *en = json_array();
+    for (int i = 0; i < b.eevee.count; i++)
+      json_array_append_new(en, json_string(b.eevee.text[i]));
+    json_object_set_new(root, "eevee_notes", en);
+    if (b.eevee.failed) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
   if (st == SH_OK && !root) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
 
@@ -445,6 +519,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
     }
   }
   json_decref(root);
+  se_notes_free(&b.eevee);
   free(name);
   return st;
 }

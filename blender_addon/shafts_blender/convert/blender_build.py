@@ -150,6 +150,93 @@ def add_all(tree, shaders):
     return total
 
 
+def _op(tree, kind, operation, *args):
+    """A Math or Vector Math node of `operation` on its arguments (output
+    sockets are linked, numbers and tuples set as values); its output."""
+    n = tree.nodes.new(kind)
+    n.operation = operation
+    for k, a in enumerate(args):
+        if hasattr(a, "is_output"):
+            tree.links.new(a, n.inputs[k])
+        else:
+            n.inputs[k].default_value = a
+    return n.outputs["Value" if kind == "ShaderNodeMath" else
+                     ("Value" if operation in ("LENGTH", "DOT", "DISTANCE") else "Vector")]
+
+
+def smath(tree, operation, *args):
+    return _op(tree, "ShaderNodeMath", operation, *args)
+
+
+def vmath(tree, operation, *args):
+    return _op(tree, "ShaderNodeVectorMath", operation, *args)
+
+
+def light_transmittance(tree, t):
+    """The transmittance, per channel, from the shading point P to the
+    light through the medium's box: exp(-sigma_t L), L the length of the
+    segment P -> P + d inside the box (slab test), d = light position - P
+    (point, spot) or a long step towards a sun. EEVEE lights surfaces as if
+    no medium were there; this is the factor it leaves out."""
+    pos = tree.nodes.new("ShaderNodeNewGeometry").outputs["Position"]
+    # A tiny offset keeps every component of d away from 0, where Blender's
+    # safe division gives 0 instead of +-infinity.
+    eps = (t["eps"],) * 3
+    if t["position"] is None:
+        d = vmath(tree, "ADD", tuple(x + t["eps"] for x in t["towards"]), (0.0, 0.0, 0.0))
+    else:
+        d = vmath(tree, "ADD", vmath(tree, "SUBTRACT", t["position"], pos), eps)
+    ta = vmath(tree, "DIVIDE", vmath(tree, "SUBTRACT", t["lo"], pos), d)
+    tb = vmath(tree, "DIVIDE", vmath(tree, "SUBTRACT", t["hi"], pos), d)
+    near = tree.nodes.new("ShaderNodeSeparateXYZ")
+    far = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(vmath(tree, "MINIMUM", ta, tb), near.inputs[0])
+    tree.links.new(vmath(tree, "MAXIMUM", ta, tb), far.inputs[0])
+    t0 = smath(tree, "MAXIMUM", smath(tree, "MAXIMUM", near.outputs[0], near.outputs[1]),
+              smath(tree, "MAXIMUM", near.outputs[2], 0.0))
+    t1 = smath(tree, "MINIMUM", smath(tree, "MINIMUM", far.outputs[0], far.outputs[1]),
+              smath(tree, "MINIMUM", far.outputs[2], 1.0))
+    inside = smath(tree, "MULTIPLY", smath(tree, "MAXIMUM", smath(tree, "SUBTRACT", t1, t0), 0.0),
+                  vmath(tree, "LENGTH", d))
+    rgb_out = tree.nodes.new("ShaderNodeCombineXYZ")
+    for c in range(3):
+        tau = smath(tree, "MULTIPLY", inside, -t["sigma_t"][c])
+        tree.links.new(smath(tree, "EXPONENT", tau), rgb_out.inputs[c])
+    return rgb_out.outputs[0]
+
+
+def tinted(tree, colour, factor):
+    """A colour socket value times a factor socket (None: the colour)."""
+    if factor is None:
+        return None
+    return vmath(tree, "MULTIPLY", colour[:3], factor)
+
+
+def transmittance_setup(data, engine):
+    """What light_transmittance needs, or None: EEVEE, a medium that
+    extinguishes and exactly one light (with several, EEVEE's surfaces stay
+    unattenuated: the data's eevee_notes say so)."""
+    lights = data.get("lights", [])
+    if engine != "eevee" or "medium" not in data or len(lights) != 1:
+        return None
+    m = data["medium"]
+    sigma_t = numbers(m.get("sigma_t"), 3, "medium.sigma_t")
+    if max(sigma_t) <= 0:
+        return None
+    lo = numbers(m.get("min"), 3, "medium.min")
+    hi = numbers(m.get("max"), 3, "medium.max")
+    mat = matrix(lights[0].get("matrix"), "lights[0].matrix")
+    far = 10.0 * numbers([data.get("camera", {}).get("clip_end")], 1, "camera.clip_end")[0]
+    t = {"lo": tuple(lo), "hi": tuple(hi), "sigma_t": sigma_t, "eps": 1e-9 * far,
+         "position": None, "towards": None}
+    if lights[0].get("type") == "SUN":
+        z = mat.col[2]
+        t["towards"] = (z[0] * far, z[1] * far, z[2] * far)
+    else:
+        t["position"] = tuple(mat.translation)
+    return t
+
+
 def seen_by_traced_rays(tree):
     """A factor that is 1 for camera, glossy and transmission rays and 0 for
     diffuse and volume-scatter rays: emission, the ambient term and the
@@ -176,24 +263,35 @@ def new_material(name):
     return mat, tree, out
 
 
-def surface_material(item, index):
+def surface_material(item, index, transmittance=None):
     """The Whitted material as a sum of closures: Diffuse (Lambert), Glossy
     (the Phong highlight, approximate), sharp Glossy (mirror), Refraction for
     traced rays with Transparent for shadow rays (transmit), Emission (with
-    the ambient term) seen by traced rays only, so that it lights nothing."""
+    the ambient term) seen by traced rays only, so that it lights nothing.
+    With `transmittance` (transmittance_setup), the diffuse and glossy
+    colours are multiplied by the light's transmittance through the medium
+    (for EEVEE, which leaves it out)."""
     what = "materials[%d]" % index
     mat, tree, out = new_material("material%d %s" % (index, str(item.get("label", ""))[:40]))
     set_if(mat.cycles, "sample_as_light", False)
     set_if(mat.cycles, "emission_sampling", "NONE")
     path = tree.nodes.new("ShaderNodeLightPath")
     parts = []
+    factor = (light_transmittance(tree, transmittance) if transmittance is not None
+              else None)
     diffuse = rgb(item.get("diffuse"), what + ".diffuse")
     if max(diffuse[:3]) > 0:
-        parts.append(node(tree, "ShaderNodeBsdfDiffuse", Color=diffuse, Roughness=0.0).outputs[0])
+        d = node(tree, "ShaderNodeBsdfDiffuse", Color=diffuse, Roughness=0.0)
+        if factor is not None:
+            tree.links.new(tinted(tree, diffuse, factor), d.inputs["Color"])
+        parts.append(d.outputs[0])
     if "glossy" in item:
-        g = node(tree, "ShaderNodeBsdfGlossy", Color=rgb(item["glossy"], what + ".glossy"),
+        glossy = rgb(item["glossy"], what + ".glossy")
+        g = node(tree, "ShaderNodeBsdfGlossy", Color=glossy,
                  Roughness=numbers([item.get("roughness")], 1, what + ".roughness")[0])
         g.distribution = "BECKMANN"
+        if factor is not None:
+            tree.links.new(tinted(tree, glossy, factor), g.inputs["Color"])
         parts.append(g.outputs[0])
     mirror = rgb(item.get("mirror"), what + ".mirror")
     if max(mirror[:3]) > 0:
@@ -264,36 +362,48 @@ def card_material(item, images, index):
 
 
 def volume_material(item, engine):
-    """The medium: Volume Scatter lobes (sigma_s = colour * density,
-    Henyey-Greenstein) and Volume Absorption (sigma_a = (1 - colour) *
-    density), no surface. Several lobes are an equal-weight mixture for
-    Cycles, which sums their phases; EEVEE, which averages their g, gets its
-    own single lobe ("eevee") when there is one."""
+    """The medium, no surface: one Principled Volume (Color, Density,
+    Absorption Color, Anisotropy as the writer computed them, so that its
+    sigma_s, sigma_a and Henyey-Greenstein g are the scene's in both
+    engines), or, for Cycles when the data holds a mixture of lobes
+    ("cycles_mixture"), Volume Scatter lobes plus Volume Absorption joined
+    by Add Shaders (Cycles sums their phases; EEVEE would average their g,
+    so it keeps the single lobe)."""
     mat, tree, out = new_material("medium")
-    if engine == "eevee" and "eevee" in item:
-        item = item["eevee"]
-        if not isinstance(item, dict):
-            raise DataError("medium.eevee: expected an object")
     set_if(mat.cycles, "homogeneous_volume", True)
     set_if(mat.cycles, "volume_sampling", "MULTIPLE_IMPORTANCE")
-    parts = []
-    lobes = item.get("scatter")
-    if not isinstance(lobes, list):
-        raise DataError("medium.scatter: expected a list")
-    for k, lobe in enumerate(lobes):
-        what = "medium.scatter[%d]" % k
-        parts.append(node(tree, "ShaderNodeVolumeScatter",
-                          Color=rgb(lobe.get("color"), what + ".color"),
-                          Density=numbers([lobe.get("density")], 1, what)[0],
-                          Anisotropy=numbers([lobe.get("anisotropy")], 1, what)[0]).outputs[0])
-    if "absorption" in item:
-        a = item["absorption"]
-        parts.append(node(tree, "ShaderNodeVolumeAbsorption",
-                          Color=rgb(a.get("color"), "medium.absorption.color"),
-                          Density=numbers([a.get("density")], 1, "medium.absorption")[0]).outputs[0])
-    total = add_all(tree, parts)
-    if total is not None:
-        tree.links.new(total, out.inputs["Volume"])
+    mix = item.get("cycles_mixture")
+    if engine == "cycles" and mix is not None:
+        if not isinstance(mix, dict) or not isinstance(mix.get("scatter"), list):
+            raise DataError("medium.cycles_mixture: expected an object with a scatter list")
+        parts = []
+        for k, lobe in enumerate(mix["scatter"]):
+            what = "medium.cycles_mixture.scatter[%d]" % k
+            parts.append(node(tree, "ShaderNodeVolumeScatter",
+                              Color=rgb(lobe.get("color"), what + ".color"),
+                              Density=numbers([lobe.get("density")], 1, what)[0],
+                              Anisotropy=numbers([lobe.get("anisotropy")], 1, what)[0]).outputs[0])
+        if "absorption" in mix:
+            a = mix["absorption"]
+            what = "medium.cycles_mixture.absorption"
+            parts.append(node(tree, "ShaderNodeVolumeAbsorption",
+                              Color=rgb(a.get("color"), what + ".color"),
+                              Density=numbers([a.get("density")], 1, what)[0]).outputs[0])
+        total = add_all(tree, parts)
+        if total is not None:
+            tree.links.new(total, out.inputs["Volume"])
+        return mat
+    v = item.get("volume")
+    if not isinstance(v, dict):
+        raise DataError("medium.volume: expected an object")
+    what = "medium.volume"
+    p = node(tree, "ShaderNodeVolumePrincipled",
+             Color=rgb(v.get("color"), what + ".color"),
+             Density=numbers([v.get("density")], 1, what + ".density")[0],
+             Anisotropy=numbers([v.get("anisotropy")], 1, what + ".anisotropy")[0])
+    p.inputs["Absorption Color"].default_value = rgb(v.get("absorption_color"),
+                                                     what + ".absorption_color")
+    tree.links.new(p.outputs[0], out.inputs["Volume"])
     return mat
 
 
@@ -370,7 +480,7 @@ def setup_render(scene, data, opts, medium_box):
         e.use_volumetric_lights = True
         e.use_volumetric_shadows = True
         e.volumetric_samples = 256
-        e.volumetric_shadow_samples = 128
+        e.volumetric_shadow_samples = 32
         e.volumetric_tile_size = "2"
         e.volumetric_sample_distribution = 0.8
         e.volumetric_light_clamp = 0.0
@@ -398,6 +508,9 @@ def build(data, base_dir, opts):
     check_format(data)
     for line in data.get("notes", []):
         print("scene_export note: %s" % str(line).replace("\n", " "))
+    if opts["engine"] == "eevee":
+        for line in data.get("eevee_notes", []):
+            print("scene_export note (EEVEE): %s" % str(line).replace("\n", " "))
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     medium_box = build_into(scene, scene.collection, data, base_dir, opts["engine"])
@@ -448,7 +561,10 @@ def build_into(scene, collection, data, base_dir, engine):
             raise DataError(what + ".type: expected POINT, SPOT or SUN")
         light = bpy.data.lights.new("light%d" % k, kind)
         light.color = rgb(item.get("color"), what + ".color")[:3]
-        light.energy = numbers([item.get("energy")], 1, what + ".energy")[0]
+        # A spot whose exponent Cycles needs a card for has Cycles' power
+        # times the card's factor; EEVEE gets the plain power (no card).
+        energy = "eevee_energy" if engine == "eevee" and "eevee_energy" in item else "energy"
+        light.energy = numbers([item.get(energy)], 1, what + "." + energy)[0]
         light.use_shadow = True
         set_if(light, "use_contact_shadow", False)
         set_if(getattr(light, "cycles", None), "cast_shadow", True)
@@ -484,7 +600,9 @@ def build_into(scene, collection, data, base_dir, engine):
     finally:
         shutil.rmtree(staging, ignore_errors=True)
 
-    materials = [surface_material(item, k) for k, item in enumerate(data.get("materials", []))]
+    transmittance = transmittance_setup(data, engine)
+    materials = [surface_material(item, k, transmittance)
+                 for k, item in enumerate(data.get("materials", []))]
     for k, item in enumerate(data.get("meshes", [])):
         what = "meshes[%d]" % k
         mi = item.get("material")
@@ -501,6 +619,8 @@ def build_into(scene, collection, data, base_dir, engine):
 
     for k, item in enumerate(data.get("cards", [])):
         what = "cards[%d]" % k
+        if item.get("engine", engine) != engine:
+            continue  # another engine's card (a Cycles spot profile, say)
         mesh = build_mesh("card%d" % k, item, what)
         if "uvs" in item:
             uvs = numbers(item["uvs"], 2 * len(mesh.vertices), what + ".uvs")
