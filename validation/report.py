@@ -14,6 +14,7 @@ import os
 from pathlib import Path
 
 from .metrics import fmt_percent, fmt_seconds
+from .verdicts import text as verdict_text
 
 THRESHOLDS = (0.01, 0.02, 0.05)
 
@@ -185,21 +186,23 @@ def _summary_table(results):
            "5% of the image height around it), where the radiance grows without bound and a "
            "handful of pixels can decide the error alone.</p>",
            "<table><tr><th rowspan=2>scene</th><th rowspan=2>renderer</th>"
-           "<th colspan=4>whole lit region</th><th colspan=4>away from the lights</th></tr>"
+           "<th colspan=4>whole lit region</th><th colspan=4>away from the lights</th>"
+           "<th rowspan=2>error is (docs/validation.md, bias or noise)</th></tr>"
            "<tr><th>1%</th><th>2%</th><th>5%</th><th>least error</th>"
            "<th>1%</th><th>2%</th><th>5%</th><th>least error</th></tr>"]
     for s in results["scenes"]:
         if s.get("error"):
-            out.append('<tr><td><a href="#scene-%s">%s</a></td><td colspan=9 class="fail">%s</td></tr>'
+            out.append('<tr><td><a href="#scene-%s">%s</a></td><td colspan=10 class="fail">%s</td></tr>'
                        % (_e(s["name"]), _e(s["name"]), _e(s["error"])))
             continue
         first = True
         for name, tt in s["time_to"].items():
             masked = s.get("time_to_masked", {}).get(name)
-            out.append("<tr><td>%s</td><td>%s</td>%s%s</tr>" % (
+            out.append("<tr><td>%s</td><td>%s</td>%s%s<td>%s</td></tr>" % (
                 '<a href="#scene-%s">%s</a>' % (_e(s["name"]), _e(s["name"])) if first else "",
                 _e(series_label(rix, name, s["time_to"])), _time_to_cells(tt),
-                _time_to_cells(masked) if masked else '<td colspan=4 class="note">no light in view</td>'))
+                _time_to_cells(masked) if masked else '<td colspan=4 class="note">no light in view</td>',
+                _e(_verdict_of(s, name))))
             first = False
     out.append("</table>")
     return out
@@ -217,6 +220,7 @@ def _scene_section(s, results, base):
                   "" if s["has_medium"] else " (no medium: surfaces only; the sweeps over "
                   "medium settings are left out)",
                   _e(ref["label"]), _e(fmt_seconds(ref.get("tool_seconds")))))
+    out += ["<p>%s</p>" % _e(t) for t in _twin_lines(s)]
     if s.get("self_check") is not None:
         out.append('<p class="note">Reference self-check: lmm_tracer at %d spp (another seed) '
                    'differs from it by %s; the reference, with %dx the samples, is closer '
@@ -285,6 +289,28 @@ def _scene_section(s, results, base):
                        _thumb(run.get("diff_png"), base)))
     out.append("</table>")
     return out
+
+
+def _verdict_of(s, key):
+    """The bias-or-noise cell of a time_to key (verdicts.py): the
+    renderer's verdict, on the first of its rows only (a renderer timed
+    both ways has the same images, so the same errors, in both)."""
+    base = key[:-len(WARM)] if key.endswith(WARM) else key
+    first = next(k for k in s["time_to"] if k in (base, base + WARM))
+    return verdict_text(s.get("verdicts", {}).get(base)) if key == first else ""
+
+
+def _twin_lines(s):
+    """What the report says about a scene's twin (twins.py), or about the
+    scene a twin is made from."""
+    if s.get("twin_of"):
+        return ["Twin of %s: %s." % (s["twin_of"], "; ".join(s.get("changes", [])))]
+    t = s.get("twin")
+    if not t:
+        return []
+    shift = (" Its reference differs from this one by %s: what the changes alone do."
+             % fmt_percent(t["shift"])) if t.get("shift") is not None else ""
+    return ["Twin: %s: %s.%s" % (t["name"], "; ".join(t["changes"]), shift)]
 
 
 def _check_text(chk):
@@ -420,11 +446,11 @@ def summary_markdown(results):
             "over the lit region is at most the level. Where a light is in view, the "
             "figures in brackets leave out the pixels next to it (a square of 5% of the "
             "image height), where the radiance grows without bound.", "",
-            "| scene | size | renderer | 1% | 2% | 5% | least error (time) |",
-            "|---|---|---|---:|---:|---:|---:|"]
+            "| scene | size | renderer | 1% | 2% | 5% | least error (time) | error is |",
+            "|---|---|---|---:|---:|---:|---:|---|"]
     for s in results["scenes"]:
         if s.get("error"):
-            out.append("| %s | | | | | | %s |" % (s["name"], s["error"]))
+            out.append("| %s | | | | | | %s | |" % (s["name"], s["error"]))
             continue
         for name, tt in s["time_to"].items():
             masked = s.get("time_to_masked", {}).get(name)
@@ -436,10 +462,11 @@ def summary_markdown(results):
             def best_text(tt):
                 b = tt.get("best") if tt else None
                 return "%s (%s)" % (fmt_percent(b[0]), fmt_seconds(b[1])) if b else "–"
-            out.append("| %s | %dx%d | %s | %s | %s | %s | %s |" % (
+            out.append("| %s | %dx%d | %s | %s | %s | %s | %s | %s |" % (
                 s["name"], s["width"], s["height"], series_label(rix, name, s["time_to"]),
                 *[cell(th) for th in THRESHOLDS],
-                best_text(tt) + (" [%s]" % best_text(masked) if masked else "")))
+                best_text(tt) + (" [%s]" % best_text(masked) if masked else ""),
+                _verdict_of(s, name).replace("|", "/")))
     out += ["", "## Every run", ""]
     for s in results["scenes"]:
         if s.get("error"):
@@ -447,8 +474,8 @@ def summary_markdown(results):
         plots = "![speed against error](plots/%s)" % os.path.basename(s["plot"])
         if s.get("plot_masked"):
             plots += " ![away from the lights](plots/%s)" % os.path.basename(s["plot_masked"])
-        out += ["### %s" % s["name"], "",
-                "Reference: %s, %s." % (s["reference"]["label"],
+        out += ["### %s" % s["name"], ""] + [t + "\n" for t in _twin_lines(s)]
+        out += ["Reference: %s, %s." % (s["reference"]["label"],
                                         fmt_seconds(s["reference"].get("tool_seconds"))), "",
                 plots, "",
                 "| renderer | setting | time | warm frame | error | away from lights | PSNR "

@@ -3,14 +3,16 @@ converged reference, in error and in time.
 
   python3 -m validation.validate [--quick | --full] --report DIR [--scenes DIR_OR_FILE ...]
               [--cache DIR] [--build-dir DIR] [--renderers a,b,...]
-              [--scale F] [--ref-spp N] [--no-hard-cases] [--retry-failed]
-              [--executor local|slurm] [--partition P] [--account A] ...
+              [--scale F] [--ref-spp N] [--no-hard-cases] [--no-twins]
+              [--retry-failed] [--executor local|slurm] [--partition P] [--account A] ...
 
 For each scene: the converged reference (lmm_tracer --mode reference at
 high spp), then each renderer's sweep (renderers.py: gl_shafts over planes,
 lattice and --xi; lmm_tracer over spp and modes; POV-Ray over media
 intervals; Cycles over samples; EEVEE over volumetric settings), each run
-timed and compared with the reference (shafts_compare). Then the hard-case
+timed and compared with the reference (shafts_compare); after a scene, its
+twin (twins.py: the phase and highlights every peer represents exactly),
+and every renderer's verdict on both: bias or noise (verdicts.py). Then the hard-case
 stability suite (validation/hard/). Writes DIR/index.html, DIR/summary.md and
 DIR/results.json; runs are cached (runs.py) so a re-run renders only what
 changed and an interrupted run resumes. A renderer that is missing or fails
@@ -39,7 +41,7 @@ from pathlib import Path
 
 import subprocess
 
-from . import renderers, report, slurm
+from . import renderers, report, slurm, verdicts
 from .hard import runner as hard_cases
 from .progress import ProgressExecutor
 from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,
@@ -47,6 +49,7 @@ from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_ima
 from .runs import LocalExecutor, RunCache, plan_run
 from .scenes import find_scenes, light_mask, prepare_file, write_atomic
 from .svgplot import speed_error_svg
+from .twins import prepare_twin
 
 HERE = Path(__file__).resolve().parent
 
@@ -58,6 +61,11 @@ MODES = {
     "full": {"scale": 1.0, "ref_spp": 4096, "hard": "", "warm_frames": 5},
 }
 LIT = 0.01
+# The renderers a twin (twins.py) is rendered with: the peers it is made
+# for, and the project's renderers for their speed beside them. POV-Ray
+# represents the canonical scenes exactly (docs/scene_export.md), so its
+# twin runs would repeat its scene's.
+TWIN_RENDERERS = ("lmm_tracer", "gl_shafts", "cycles", "eevee")
 
 
 def slug(text):
@@ -81,8 +89,9 @@ def machine():
 class Validation:
     """One validation run: its context, cache, report directory, tallies."""
 
-    def __init__(self, ctx, cache, report_dir, adapters, ref_spp, executor, say):
+    def __init__(self, ctx, cache, report_dir, adapters, ref_spp, executor, say, twins=True):
         self.ctx, self.cache, self.dir = ctx, cache, Path(report_dir)
+        self.twins = twins
         self.adapters, self.ref_spp = adapters, ref_spp
         self.executor, self.say = executor, say
         self.compare_tool = ctx.tool("validation/shafts_compare")
@@ -119,6 +128,13 @@ class Validation:
         for adapter in self.adapters:
             out += [plan_run(self.ctx, adapter, scene, p, lab)
                     for lab, p in adapter.settings(self.ctx, scene)]
+        twin = prepare_twin(path, self.cache.root, scale) if self.twins else None
+        if twin:
+            out.append(plan_run(self.ctx, renderers.REFERENCE, twin[0], params, label))
+            for adapter in self.adapters:
+                if adapter.name in TWIN_RENDERERS:
+                    out += [plan_run(self.ctx, adapter, twin[0], p, lab)
+                            for lab, p in adapter.settings(self.ctx, twin[0])]
         return out
 
     def scene(self, path, scale):
@@ -128,6 +144,33 @@ class Validation:
         except (OSError, ValueError) as e:
             name = Path(path).stem
             return {"name": name, "source": str(path), "error": "cannot read the scene: %s" % e}
+        return self.measure(scene, self.adapters)
+
+    def twin(self, path, scale, original):
+        """Renders and compares the twin of a scene (twins.py) with the
+        renderers of TWIN_RENDERERS; returns its entry, or None when the
+        scene has no twin. Adds to `original` the twin's name and how far
+        the twin's reference is from the scene's."""
+        prepared = prepare_twin(path, self.cache.root, scale)
+        if prepared is None or original.get("error"):
+            return None
+        scene, changes, data = prepared
+        entry = self.measure(scene, [a for a in self.adapters if a.name in TWIN_RENDERERS])
+        entry["twin_of"], entry["changes"] = original["name"], changes
+        original["twin"] = {"name": scene.name, "changes": changes}
+        if not entry.get("error"):
+            try:
+                original["twin"]["shift"] = compare(
+                    self.compare_tool, original["reference"]["image"],
+                    entry["reference"]["image"], lit=LIT)["rel_rms"]
+            except CompareFailed:
+                pass
+            original["verdicts"] = verdicts.classify(original, data, twin=entry)
+        return entry
+
+    def measure(self, scene, adapters):
+        """Renders a prepared scene with `adapters` and compares every run
+        with its reference; returns the scene's entry of the results."""
         self.say("%s (%dx%d)" % (scene.name, scene.width, scene.height))
         sdir = self.dir / "scenes" / scene.name
         sdir.mkdir(parents=True, exist_ok=True)
@@ -146,7 +189,8 @@ class Validation:
             entry["error"] = "cannot read the reference image: %s" % e
             return entry
         entry["reference"] = {"label": ref_label, "tool_seconds": ref.get("tool_seconds"),
-                              "wall_seconds": ref.get("wall_seconds"), "png": str(png)}
+                              "wall_seconds": ref.get("wall_seconds"), "png": str(png),
+                              "image": str(ref["image"])}
         # Lights in view: the errors are also measured without the pixels
         # next to them (scenes.light_mask), where radiance is unbounded.
         mask = light_mask(scene.data)
@@ -154,7 +198,7 @@ class Validation:
         if mask:
             entry["masked_pixels"] = sum(r[2] * r[3] for r in mask)
             masked_ref = mask_image(ref["image"], mask, sdir / ".reference.masked.exr")
-        for adapter in self.adapters:
+        for adapter in adapters:
             for label, params in adapter.settings(self.ctx, scene):
                 result = self.run(adapter, scene, params, label)
                 row = {"renderer": adapter.name, "label": label, "params": params,
@@ -190,6 +234,7 @@ class Validation:
             self._summarise(entry, "metrics_masked", "time_to_masked", "plot_masked",
                             ", away from the lights in view")
         self._self_check(entry)
+        entry["verdicts"] = verdicts.classify(entry, scene.data)
         return entry
 
     def _summarise(self, entry, metrics, time_key, plot_key, what):
@@ -276,6 +321,8 @@ def parse_args(argv):
     ap.add_argument("--ref-spp", type=int, help="reference spp (quick 512, full 4096)")
     ap.add_argument("--timeout", type=float, help="seconds before a run is stopped")
     ap.add_argument("--no-hard-cases", action="store_true", help="skip the hard cases")
+    ap.add_argument("--no-twins", action="store_true",
+                    help="skip the scenes' twins (validation/twins.py)")
     ap.add_argument("--retry-failed", action="store_true",
                     help="render again the runs that failed last time")
     ap.add_argument("--strict", action="store_true",
@@ -378,7 +425,8 @@ def main(argv=None):
             setup=args.slurm_setup, sbatch_args=args.sbatch_arg)
     else:
         executor = LocalExecutor(ctx, cache, args.retry_failed)
-    val = Validation(ctx, cache, report_dir, available, ref_spp, executor, say)
+    val = Validation(ctx, cache, report_dir, available, ref_spp, executor, say,
+                     twins=not args.no_twins)
     scale = args.scale if args.scale is not None else mode["scale"]
     hard = [a for a in hard_wanted if a.missing(ctx) is None]
     # Every run of the validation, planned ahead: the Slurm executor renders
@@ -406,8 +454,13 @@ def main(argv=None):
         write_atomic(report_dir / "summary.md", report.summary_markdown(results))
 
     for path in scene_files:
-        results["scenes"].append(val.scene(path, scale))
+        entry = val.scene(path, scale)
+        results["scenes"].append(entry)
         save()
+        twin = val.twin(path, scale, entry) if val.twins else None
+        if twin:
+            results["scenes"].append(twin)
+            save()
 
     if not args.no_hard_cases:
         say("hard cases (%s)" % ", ".join(a.name for a in hard))

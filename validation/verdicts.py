@@ -1,0 +1,203 @@
+"""Bias or noise: what a renderer's remaining error on a scene is made of.
+
+The validation renders every renderer at rising settings, so the run
+already holds what tells bias from noise: how the error falls as the
+setting rises. Monte Carlo noise has a variance inversely proportional to
+the samples, so a renderer's relative RMS error at n samples is
+
+    e(n)^2 = b^2 + c / n
+
+with b the bias (what no number of samples removes) and c / n the noise's
+share. Two settings n1 < n2 = r n1 of the same series give
+
+    noise^2 = (e1^2 - e2^2) / (r - 1),   bias^2 = e2^2 - noise^2
+
+(each clamped at 0), and the verdict at n2 is *noise* when noise >= bias,
+*bias* otherwise. A deterministic renderer (gl_shafts without jitter,
+POV-Ray's media with jitter 0, EEVEE) has no noise: its whole error is
+bias, which either still falls with its setting (discretisation: more
+planes, intervals or samples remove it) or has stopped falling (a floor:
+less than FLOOR_FALL of it went at the last step). An error of exactly 0 is
+*exact*. The reference's own noise (about a quarter of the self-check) is
+part of every b; it is far below the errors classified here.
+
+A row with bias names its cause from CAUSES, the known causes keyed by
+renderer and scene feature, each backed by a measurement (docs/validation.md,
+"Bias or noise"); where the scene has a twin (twins.py) the note adds the
+renderer's error on the twin, which lacks the approximated features.
+"""
+
+from .metrics import fmt_percent
+from .scenes import light_mask
+from .twins import has_phong
+
+# A deterministic error that fell by less than this fraction at the last
+# step of its setting has stopped falling: a floor.
+FLOOR_FALL = 0.2
+# A noise verdict whose bias is at least this also names the bias's cause.
+NOTE_BIAS = 0.01
+
+
+def _eevee_count(p):
+    # Volumetric samples times TAA samples per froxel of tile x tile pixels.
+    return p.get("samples", 1) * p.get("taa", 1) / float(p.get("tile", 1)) ** 2
+
+
+# How each renderer's sweep converges: which runs form its series, the
+# count a run's setting puts along it, whether its error is random, and
+# the setting's name for the notes.
+SERIES = {
+    "lmm_tracer": (lambda p: p.get("mode") == "reference", lambda p: p["spp"], True, "spp"),
+    "cycles": (lambda p: "samples" in p, lambda p: p["samples"], True, "spp"),
+    "gl_shafts": (lambda p: p.get("xi") == "exact" and not p.get("jitter")
+                  and "lattice" not in p, lambda p: p["planes"], False, "planes"),
+    "povray": (lambda p: "intervals" in p, lambda p: p["intervals"] * p.get("samples", 1),
+               False, "samples along a ray"),
+    "eevee": (lambda p: "samples" in p, _eevee_count, False, "volumetric samples"),
+}
+
+
+def features(data):
+    """The features of a scene (its dict) that CAUSES are keyed by."""
+    out = set()
+    medium = data.get("medium")
+    if isinstance(medium, dict):
+        out.add("medium")
+        out.add("phase:%s" % (medium.get("phase") or {}).get("type", "isotropic"))
+    materials = [m for m in (data.get("materials") or {}).values() if isinstance(m, dict)]
+    if any(has_phong(m) for m in materials):
+        out.add("phong")
+    for key in ("reflect", "transmit"):
+        if any(any(float(c) > 0 for c in m.get(key, [0, 0, 0])) for m in materials):
+            out.add(key)
+    lights = data.get("lights") or []
+    if data.get("shapes") and lights:
+        out.add("shadows")
+    if len(lights) > 1:
+        out.add("several_lights")
+    try:
+        if light_mask(data):
+            out.add("light_in_view")
+    except (KeyError, TypeError, ValueError, ZeroDivisionError):
+        pass
+    return out
+
+
+# The known causes of bias: (renderers, feature, short note). Each is
+# backed by a measurement in docs/validation.md ("Bias or noise"). The
+# first matching entries name a row's cause.
+CAUSES = [
+    (("cycles", "eevee"), "phase:nishita_hazy",
+     "Nishita hazy phase exported as one HG lobe, g 0.4"),
+    (("cycles", "eevee"), "phase:nishita_murky",
+     "Nishita murky phase exported as one HG lobe, g 0.567"),
+    (("cycles", "eevee"), "phase:rayleigh",
+     "Rayleigh phase exported as two HG lobes"),
+    (("cycles", "eevee"), "phong", "Phong highlights exported as Glossy"),
+    (("eevee",), "medium", "EEVEE's froxel volumetrics"),
+    (("gl_shafts",), "reflect", "reflecting and transmitting materials drawn opaque"),
+    (("gl_shafts",), "transmit", "reflecting and transmitting materials drawn opaque"),
+    (("gl_shafts",), "shadows", "shadow-map edges"),
+    (("povray",), "transmit", "total internal reflection in the glass"),
+    (("cycles",), "transmit", "glass: Cycles' own refraction and caustics differ"),
+]
+
+
+def causes(renderer, feats):
+    """The notes of the known causes of bias that apply to `renderer` on a
+    scene with features `feats`, without repeats."""
+    out = []
+    for names, feature, note in CAUSES:
+        if renderer in names and feature in feats and note not in out:
+            out.append(note)
+    return out
+
+
+def split(e1, e2, r):
+    """(bias, noise) at the larger setting, from the errors e1 at n and e2
+    at r n of a Monte Carlo series (the module's rule)."""
+    noise2 = max(0.0, (e1 * e1 - e2 * e2) / (r - 1.0))
+    bias2 = max(0.0, e2 * e2 - noise2)
+    return bias2 ** 0.5, min(noise2, e2 * e2) ** 0.5
+
+
+def classify_runs(renderer, runs):
+    """The verdict on one renderer's runs (dicts with params and metrics):
+    a dict with kind ("exact", "noise", "bias" or "unknown"), error, bias,
+    noise, whether the error still falls with the setting, and the basis
+    (the two settings compared); None when there is no series."""
+    if renderer not in SERIES:
+        return None
+    member, count, random, axis = SERIES[renderer]
+    pts = sorted((count(r["params"]), r["metrics"]["rel_rms"]) for r in runs
+                 if r.get("metrics") and r["metrics"].get("rel_rms") is not None
+                 and member(r["params"]))
+    if not pts and not random:
+        # No sweep (a scene without a medium): the renderer's one run, all
+        # of whose error is bias.
+        pts = sorted((0, r["metrics"]["rel_rms"]) for r in runs
+                     if r.get("metrics") and r["metrics"].get("rel_rms") is not None)[:1]
+    if not pts:
+        return None
+    n2, e2 = pts[-1]
+    lower = [p for p in pts if p[0] < n2]
+    out = {"kind": "unknown", "error": e2, "bias": None, "noise": None, "falls": None,
+           "basis": "%s %g" % (axis, n2) if n2 else "one setting"}
+    if e2 == 0:
+        out.update(kind="exact", bias=0.0, noise=0.0)
+        return out
+    if not lower:
+        if not random:
+            out.update(kind="bias", bias=e2, noise=0.0)
+        return out
+    n1, e1 = lower[-1]
+    out["basis"] = "%s %g to %g: %s to %s" % (axis, n1, n2, fmt_percent(e1), fmt_percent(e2))
+    out["falls"] = e2 <= (1.0 - FLOOR_FALL) * e1
+    if random:
+        bias, noise = split(e1, e2, n2 / float(n1))
+        out.update(kind="noise" if noise >= bias else "bias", bias=bias, noise=noise)
+    else:
+        out.update(kind="bias", bias=e2, noise=0.0)
+    return out
+
+
+def classify(entry, data, twin=None):
+    """Every renderer's verdict on a scene entry of the results (its runs),
+    the scene's dict `data` and, when it has one, its twin's entry; the
+    verdicts with bias carry a note naming the cause."""
+    feats = features(data)
+    out = {}
+    for renderer in dict.fromkeys(r["renderer"] for r in entry.get("runs", [])):
+        v = classify_runs(renderer, [r for r in entry["runs"] if r["renderer"] == renderer])
+        if v is None:
+            continue
+        if v["kind"] == "bias" or (v["bias"] or 0) >= NOTE_BIAS:
+            known = causes(renderer, feats)
+            if v["falls"] and not SERIES[renderer][2]:
+                # A deterministic error still falling: the setting's
+                # discretisation, which more of it removes.
+                known = ["discretisation: falls with more %s" % SERIES[renderer][3]]
+            v["note"] = "; ".join(known) if known else "cause not identified"
+            tv = (twin or {}).get("verdicts", {}).get(renderer)
+            if tv is not None:
+                v["note"] += " (on the twin: %s)" % short(tv)
+        out[renderer] = v
+    return out
+
+
+def short(v):
+    """A verdict in a few words: "noise", "bias 19 %", "exact"."""
+    if v is None:
+        return ""
+    if v["kind"] == "bias":
+        return "bias %s" % fmt_percent(v["bias"])
+    if v["kind"] == "noise":
+        return "noise (bias %s)" % fmt_percent(v["bias"]) if v["bias"] else "noise"
+    return v["kind"]
+
+
+def text(v):
+    """The verdict and, with bias, its cause: a table cell."""
+    if v is None:
+        return ""
+    return short(v) + (": " + v["note"] if v.get("note") else "")
