@@ -146,6 +146,8 @@ class VerdictsTest(unittest.TestCase):
         single = verdicts.classify_runs("gl_shafts", [run("gl_shafts", {}, 0.27)])
         self.assertEqual((single["kind"], single["bias"], single["falls"]), ("bias", 0.27, None))
         self.assertIsNone(verdicts.classify_runs("cycles", []))
+        sweep = verdicts.classify_runs("addon_sweep", [run("addon_sweep", {}, 0.02)])
+        self.assertEqual((sweep["kind"], sweep["bias"]), ("bias", 0.02))
         eevee = [run("eevee", {"tile": 16, "samples": 16, "taa": 1}, 0.45),
                  run("eevee", {"tile": 2, "samples": 128, "taa": 8}, 0.45)]
         v = verdicts.classify_runs("eevee", eevee)

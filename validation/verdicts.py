@@ -54,6 +54,10 @@ SERIES = {
     "povray": (lambda p: "intervals" in p, lambda p: p["intervals"] * p.get("samples", 1),
                False, "samples along a ray"),
     "eevee": (lambda p: "samples" in p, _eevee_count, False, "volumetric samples"),
+    # The Blender add-on's engines: lmm_tracer's reference mode, and
+    # gl_shafts at its defaults (one run, no series).
+    "addon_tracer": (lambda p: "spp" in p, lambda p: p["spp"], True, "spp"),
+    "addon_sweep": (lambda p: False, None, False, "planes"),
 }
 
 
@@ -95,9 +99,11 @@ CAUSES = [
      "Rayleigh phase exported as two HG lobes"),
     (("cycles", "eevee"), "phong", "Phong highlights exported as Glossy"),
     (("eevee",), "medium", "EEVEE's froxel volumetrics"),
-    (("gl_shafts",), "reflect", "reflecting and transmitting materials drawn opaque"),
-    (("gl_shafts",), "transmit", "reflecting and transmitting materials drawn opaque"),
-    (("gl_shafts",), "shadows", "shadow-map edges"),
+    (("gl_shafts", "addon_sweep"), "reflect",
+     "reflecting and transmitting materials drawn opaque"),
+    (("gl_shafts", "addon_sweep"), "transmit",
+     "reflecting and transmitting materials drawn opaque"),
+    (("gl_shafts", "addon_sweep"), "shadows", "shadow-map edges"),
     (("povray",), "transmit", "total internal reflection in the glass"),
     (("cycles",), "transmit", "glass: Cycles' own refraction and caustics differ"),
 ]
