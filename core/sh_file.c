@@ -3,6 +3,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +20,31 @@ sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
   return st;
 }
 
+const char *sh_file_kind(unsigned mode) {
+  return S_ISREG(mode)    ? "a regular file"
+         : S_ISDIR(mode)  ? "a directory"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISFIFO(mode) ? "a FIFO"
+         : S_ISSOCK(mode) ? "a socket"
+                          : "not a file";
+}
+
+FILE *sh_file_open_read(const char *path) {
+  int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return NULL;
+  struct stat sb;
+  if (fstat(fd, &sb) == 0 && S_ISREG(sb.st_mode))
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  FILE *f = fdopen(fd, "rb");
+  if (!f) {
+    int e = errno;
+    close(fd);
+    errno = e;
+  }
+  return f;
+}
+
 sh_status sh_file_readable(const char *path, long long *size, sh_error *err) {
   struct stat st;
   if (stat(path, &st) != 0 || access(path, R_OK) != 0) {
@@ -29,6 +55,10 @@ sh_status sh_file_readable(const char *path, long long *size, sh_error *err) {
   if (S_ISDIR(st.st_mode))
     return sh_error_set(err, SH_ERR_IO, "cannot open '%s': %s", path,
                         strerror(EISDIR));
+  if (!S_ISREG(st.st_mode))
+    return sh_error_set(err, SH_ERR_IO,
+                        "cannot open '%s': not a regular file (%s)", path,
+                        sh_file_kind(st.st_mode));
   if (size) *size = (long long)st.st_size;
   return SH_OK;
 }

@@ -3,6 +3,7 @@
 #define SH_FILE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "sh_error.h"
 
@@ -18,10 +19,12 @@ extern "C" {
 sh_status sh_file_write_atomic(const char *path, const void *data, size_t size,
                                sh_error *err);
 
-/* Checks that `path` names a file this process can read and that is not a
- * directory, before handing it to a library that reports a missing file
- * like any other failure. SH_ERR_IO, "cannot open 'PATH': REASON",
- * otherwise. Its size in bytes goes to *size when size is not NULL. */
+/* Checks that `path` names a regular file this process can read (not a
+ * directory, a device such as /dev/zero, a FIFO or a socket, which would
+ * be read forever or block), before handing it to a library that reports a
+ * missing file like any other failure. SH_ERR_IO, "cannot open 'PATH':
+ * REASON", otherwise. Its size in bytes goes to *size when size is not
+ * NULL. */
 sh_status sh_file_readable(const char *path, long long *size, sh_error *err);
 
 /* The checks every loader makes first: `fn` (the public call, named in the
@@ -31,6 +34,15 @@ sh_status sh_file_readable(const char *path, long long *size, sh_error *err);
 sh_status sh__file_load_begin(const char *fn, const char *what, void *out,
                               size_t out_size, const char *path,
                               long long *size, sh_error *err);
+
+/* Opens `path` for reading ("rb") without blocking on a FIFO (its opening
+ * would wait for a writer): the caller checks with fstat that it is a
+ * regular file before reading. NULL with errno on failure. */
+FILE *sh_file_open_read(const char *path);
+
+/* What a stat(2) st_mode is, for messages: "a directory", "a character
+ * device", "a FIFO"... */
+const char *sh_file_kind(unsigned mode);
 
 /* The extension of `path` after its last dot, lower-cased into buf (empty
  * if there is none). */

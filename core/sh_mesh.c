@@ -96,8 +96,14 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
     return NULL;
   }
   if (inside < 0) return NULL; /* does not exist: assimp says so */
-  FILE *fp = fopen(name, "rb");
+  FILE *fp = sh_file_open_read(name);
   if (!fp) return NULL;
+  /* A FIFO or a device inside the tree would block or never end. */
+  struct stat sb;
+  if (fstat(fileno(fp), &sb) != 0 || !S_ISREG(sb.st_mode)) {
+    fclose(fp);
+    return NULL;
+  }
   struct aiFile *f = calloc(1, sizeof *f);
   if (!f) {
     fclose(fp);

@@ -10,7 +10,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
+#include "sh_file.h"
 #include "sh_json_locate.h"
 #include "sh_parse_int.h"
 
@@ -482,12 +484,32 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
   if (out) *out = NULL;
   if (!path || !out)
     return sh_error_set(err, SH_ERR_ARG, "sh_scene_load: no path or output");
-  FILE *f = fopen(path, "rb");
+  FILE *f = sh_file_open_read(path);
   if (!f) {
     int e = errno;
     sh_error_set(err, SH_ERR_IO, "cannot open the scene file: %s", strerror(e));
     if (err) snprintf(err->file, sizeof err->file, "%s", path);
     return SH_ERR_IO;
+  }
+  /* Only a regular file: /dev/zero or a FIFO would be read until memory
+   * runs out or forever. And no more than SH_SCENE_MAX_BYTES, checked on
+   * the bytes read too (the file may grow while read). */
+  struct stat sb;
+  int too_big = 0;
+  if (fstat(fileno(f), &sb) == 0 &&
+      (!S_ISREG(sb.st_mode) || sb.st_size > SH_SCENE_MAX_BYTES)) {
+    fclose(f);
+    if (!S_ISREG(sb.st_mode))
+      sh_error_set(err, SH_ERR_IO,
+                   "cannot read the scene file: it is %s, not a regular file",
+                   sh_file_kind(sb.st_mode));
+    else
+      sh_error_set(err, SH_ERR_SCENE,
+                   "the scene file has %lld bytes, more than the %d MiB a "
+                   "scene may have (SH_SCENE_MAX_BYTES, docs/scene-format.md)",
+                   (long long)sb.st_size, SH_SCENE_MAX_BYTES >> 20);
+    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    return S_ISREG(sb.st_mode) ? SH_ERR_SCENE : SH_ERR_IO;
   }
   size_t cap = 1 << 16, len = 0;
   char *buf = malloc(cap + 1);
@@ -495,6 +517,12 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
   while (buf) {
     size_t got = fread(buf + len, 1, cap - len, f);
     len += got;
+    if (len > SH_SCENE_MAX_BYTES) {
+      free(buf);
+      buf = NULL;
+      too_big = 1;
+      break;
+    }
     if (len < cap) break;
     char *bigger = cap < SIZE_MAX / 4 ? realloc(buf, 2 * cap + 1) : NULL;
     if (!bigger) {
@@ -505,7 +533,12 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
     buf = bigger;
     cap *= 2;
   }
-  if (!buf) {
+  if (too_big) {
+    st = sh_error_set(err, SH_ERR_SCENE,
+                      "the scene file grew beyond the %d MiB a scene may "
+                      "have while it was read (SH_SCENE_MAX_BYTES)",
+                      SH_SCENE_MAX_BYTES >> 20);
+  } else if (!buf) {
     st = sh_error_set(err, SH_ERR_NOMEM, "out of memory reading the scene");
   } else if (ferror(f)) {
     int e = errno;

@@ -15,11 +15,17 @@
 extern "C" {
 #endif
 
+/* The largest scene file sh_scene_load reads: 64 MiB (a scene holds its
+ * meshes in files; 64 MiB of JSON is millions of numbers). */
+#define SH_SCENE_MAX_BYTES (64 << 20)
+
 /* Loads and validates the scene file at `path`; files it names (meshes,
  * images) are resolved relative to its directory. On success *out holds a
  * new scene (caller frees with sh_scene_free); on failure *out is NULL and
  * `err` says why (SH_ERR_IO, SH_ERR_SYNTAX, SH_ERR_SCENE, SH_ERR_IMAGE,
- * SH_ERR_MESH or SH_ERR_NOMEM). */
+ * SH_ERR_MESH or SH_ERR_NOMEM). A path that is not a regular file (a
+ * directory, /dev/zero, a FIFO) is SH_ERR_IO; a file larger than
+ * SH_SCENE_MAX_BYTES is SH_ERR_SCENE. */
 sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err);
 
 /* As sh_scene_load, from text in memory; `name` is used in messages and

@@ -1,6 +1,7 @@
 /* The scene parser's external files: names resolved against the scene's
  * directory, checked, and images read. */
 #include "sh_parse_int.h"
+#include "sh_file.h"
 
 #include <errno.h>
 #include <math.h>
@@ -37,10 +38,11 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
     return sh__fail_at(&p->c, key, SH_ERR_IO,
                        "cannot open the %s '%s' (resolved to '%s'): %s", kind,
                        name, path, strerror(errno));
-  if (S_ISDIR(sb.st_mode))
+  if (!S_ISREG(sb.st_mode))
     return sh__fail_at(&p->c, key, SH_ERR_IO,
-                       "the %s '%s' (resolved to '%s') is a directory", kind,
-                       name, path);
+                       "the %s '%s' (resolved to '%s') is %s, not a regular "
+                       "file",
+                       kind, name, path, sh_file_kind(sb.st_mode));
   /* Relative names must stay in the scene's tree; an absolute name is the
    * writer's explicit choice (the validation's derived scenes use them). */
   char *real = NULL;

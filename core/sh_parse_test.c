@@ -753,6 +753,46 @@ static void test_io_errors(void) {
   SH_CHECK(s == NULL);
 }
 
+/* Files that are not regular would be read forever (/dev/zero), block (a
+ * FIFO) or exhaust memory (a scene beyond SH_SCENE_MAX_BYTES): refused
+ * with a clear message before a byte is read (issue 11, kind 7). */
+static void test_not_regular(void) {
+  sh_error err;
+  sh_scene *s = NULL;
+  SH_CHECK(sh_scene_load("/dev/zero", &s, &err) == SH_ERR_IO && s == NULL);
+  SH_CHECK(strstr(err.message, "a character device, not a regular file"));
+  char fifo[512], big[512];
+  path_in_tmp(fifo, sizeof fifo, "fifo.json");
+  SH_CHECK(mkfifo(fifo, 0600) == 0);
+  SH_CHECK(sh_scene_load(fifo, &s, &err) == SH_ERR_IO && s == NULL);
+  SH_CHECK(strstr(err.message, "a FIFO, not a regular file"));
+  /* A FIFO named as a mesh or as a light map, inside the scene's tree. */
+  const char *uses[] = {
+      MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": [{\"type\": "
+                   "\"mesh\", \"material\": \"m\", \"file\": \"fifo.json\"}]}",
+      MINIMAL_HEAD ", \"lights\": [{\"type\": \"spot\", \"position\": [0, 1, "
+                   "0], \"direction\": [0, -1, 0], \"intensity\": [1, 1, 1], "
+                   "\"outer_angle_deg\": 30, \"light_map\": {\"image\": "
+                   "\"fifo.json\"}}]}"};
+  for (int i = 0; i < 2; i++) {
+    sh_status st = sh_scene_parse(uses[i], "in-memory", tmpdir, &s, &err);
+    SH_CHECK(st == SH_ERR_IO);
+    if (st != SH_ERR_IO) fprintf(stderr, "  use %d: %d %s\n", i, st, err.message);
+    SH_CHECK(s == NULL && strstr(err.message, "is a FIFO, not a regular file"));
+    SH_CHECK(err.line > 0);
+  }
+  unlink(fifo);
+  /* One byte beyond the limit (a sparse file: no disk is used). */
+  path_in_tmp(big, sizeof big, "big.json");
+  FILE *f = fopen(big, "w");
+  SH_CHECK(f && ftruncate(fileno(f), (off_t)SH_SCENE_MAX_BYTES + 1) == 0);
+  if (f) fclose(f);
+  SH_CHECK(sh_scene_load(big, &s, &err) == SH_ERR_SCENE && s == NULL);
+  SH_CHECK(strstr(err.message, "more than the 64 MiB a scene may have"));
+  SH_CHECK(strcmp(err.file, big) == 0);
+  unlink(big);
+}
+
 /* sh_scene_parse resolves names against base_dir, and reports `name`. */
 static void test_parse_base_dir(void) {
   sh_error err;
@@ -926,6 +966,7 @@ int main(void) {
   test_bounds();
   test_bad_cases();
   test_io_errors();
+  test_not_regular();
   test_parse_base_dir();
   test_confined_names();
   test_bad_texels();

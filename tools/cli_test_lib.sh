@@ -102,6 +102,9 @@ render_files_distinct() { # tool, good scene, extra arguments...
   [ -e "$dir/x.exr" ] && { echo "FAIL: a refused run wrote x.exr"; fail=1; }
   [ -n "$(ls -A "$sdir" "$dir" | grep '^\.')" ] && { echo "FAIL: refused runs left: $(ls -A "$sdir" "$dir")"; fail=1; }
   rm -f "$dir/keep.json"; rmdir "$dir/sub" 2>/dev/null
+  # A scene that is no regular file is refused at once, not read forever.
+  timeout 20 "$tool" /dev/zero -o "$dir/x.exr" -q "$@" 2>"$dir/err"; check "/dev/zero as the scene" 2 $?
+  message_has "/dev/zero as the scene" "$dir/err" "it is a character device, not a regular file"
 }
 # Interrupts a run with each signal once its output is open: the run ends
 # by the signal and its directory is as before (no output, no temporary).
