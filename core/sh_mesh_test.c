@@ -350,11 +350,7 @@ static void test_heightfield(void) {
 /* Checks a tessellated sphere: vertices on it, every triangle within
  * max_error of it (and not needlessly fine), closed and outward. */
 static void check_sphere(sh_vec3 c, double r, double max_error) {
-  sh_shape s;
-  memset(&s, 0, sizeof s);
-  s.type = SH_SHAPE_SPHERE;
-  s.center = c;
-  s.radius = r;
+  sh_shape s = {.type = SH_SHAPE_SPHERE, .center = c, .radius = r};
   sh_mesh m;
   sh_error err;
   SH_CHECK(sh_mesh_tessellate(&s, max_error, &m, &err) == SH_OK);

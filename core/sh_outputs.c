@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "sh_array.h"
 #include "sh_image_int.h"
 
 typedef struct sh__file {
@@ -155,15 +156,11 @@ static int sh__resolve(const char *path, sh__file *f) {
 }
 
 static sh__file *sh__append(sh_outputs *set) {
-  if (set->count == set->cap) {
-    int cap = set->cap ? 2 * set->cap : 8;
-    sh__file *f = realloc(set->files, sizeof *f * (size_t)cap);
-    if (!f) return NULL;
-    set->files = f;
-    set->cap = cap;
-  }
-  sh__file *f = &set->files[set->count];
-  memset(f, 0, sizeof *f);
+  sh__file *files = sh__array_grow(set->files, set->count, &set->cap, 8,
+                                   sizeof *files);
+  if (!files) return NULL;
+  set->files = files;
+  sh__file *f = &files[set->count];
   f->fd = -1;
   f->slot = -1;
   return f;

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sh_array.h"
+
 int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
                              GLint *lens, char *line_after, size_t size, const char **bad) {
   int n = 0;
@@ -145,13 +147,10 @@ sh_status gs__program_get(gs__programs *c, const gs__glsl *vs,
     free(c->entry[lru].defines);
     c->entry[lru] = c->entry[--c->n];
   }
-  if (c->n == c->cap) {
-    int cap = c->cap ? 2 * c->cap : 16;
-    gs__program_entry *e = realloc(c->entry, (size_t)cap * sizeof *e);
-    if (!e) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-    c->entry = e;
-    c->cap = cap;
-  }
+  gs__program_entry *e = sh__array_grow(c->entry, c->n, &c->cap, 16,
+                                        sizeof *e);
+  if (!e) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  c->entry = e;
   size_t len = strlen(defines) + 1;
   char *copy = malloc(len);
   if (!copy) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -282,16 +281,13 @@ static void param(gs__params *p, const char *name, int kind, const float *v) {
   }
   snprintf(line, sizeof line, "uniform %s %s;\n", TYPES[kind], name);
   gs__params_text(p, line);
-  if (p->n == p->nvcap) {
-    int cap = p->nvcap ? 2 * p->nvcap : 32;
-    gs__param_value *nv = realloc(p->value, (size_t)cap * sizeof *nv);
-    if (!nv) {
-      p->nomem = 1;
-      return;
-    }
-    p->value = nv;
-    p->nvcap = cap;
+  gs__param_value *nv = sh__array_grow(p->value, p->n, &p->nvcap, 32,
+                                       sizeof *nv);
+  if (!nv) {
+    p->nomem = 1;
+    return;
   }
+  p->value = nv;
   gs__param_value *pv = &p->value[p->n++];
   snprintf(pv->name, sizeof pv->name, "%s", name);
   pv->kind = kind;

@@ -57,12 +57,7 @@ typedef struct job {
 } job;
 
 static job make_job(gs_renderer *r, float *rgb) {
-  job j;
-  memset(&j, 0, sizeof j);
-  j.r = r;
-  j.rgb = rgb;
-  j.st = SH_ERR_DEVICE;
-  return j;
+  return (job){.r = r, .rgb = rgb, .st = SH_ERR_DEVICE};
 }
 
 static void *draw_job(void *arg) {

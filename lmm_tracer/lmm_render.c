@@ -184,14 +184,7 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
     stats->spp = ro.spp;
     stats->max_depth = ro.max_depth;
     stats->seed = ro.seed;
-    stats->threads = rs.threads;
-    stats->render_seconds = rs.seconds;
-    stats->camera_rays = rs.camera_rays;
-    stats->closest_rays = rs.closest_rays;
-    stats->occlusion_rays = rs.occlusion_rays;
-    stats->medium_samples = rs.medium_samples;
-    stats->noise_rel_rms = rs.noise_rel_rms;
-    stats->noise_pixels = rs.noise_pixels;
+    stats->trace = rs;
     if (method) {
       stats->has_lmm = 1;
       stats->mesh_step = h;
@@ -222,16 +215,17 @@ size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
   sh__json_num(o, "spp", s->spp);
   sh__json_num(o, "max_depth", s->max_depth);
   sh__json_num(o, "seed", (double)s->seed);
-  sh__json_num(o, "threads", s->threads);
+  const sh_reference_stats *t = &s->trace;
+  sh__json_num(o, "threads", t->threads);
   sh__json_num(o, "seconds", s->seconds);
-  sh__json_num(o, "render_seconds", s->render_seconds);
-  sh__json_num(o, "camera_rays", (double)s->camera_rays);
-  sh__json_num(o, "closest_rays", (double)s->closest_rays);
-  sh__json_num(o, "occlusion_rays", (double)s->occlusion_rays);
-  sh__json_num(o, "medium_samples", (double)s->medium_samples);
-  if (s->noise_pixels > 0) {
-    sh__json_num(o, "noise_rel_rms_estimate", s->noise_rel_rms);
-    sh__json_num(o, "noise_pixels", (double)s->noise_pixels);
+  sh__json_num(o, "render_seconds", t->seconds);
+  sh__json_num(o, "camera_rays", (double)t->camera_rays);
+  sh__json_num(o, "closest_rays", (double)t->closest_rays);
+  sh__json_num(o, "occlusion_rays", (double)t->occlusion_rays);
+  sh__json_num(o, "medium_samples", (double)t->medium_samples);
+  if (t->noise_pixels > 0) {
+    sh__json_num(o, "noise_rel_rms_estimate", t->noise_rel_rms);
+    sh__json_num(o, "noise_pixels", (double)t->noise_pixels);
   }
   if (s->has_lmm) {
     const lmm_stats *l = &s->lmm;

@@ -20,6 +20,7 @@
 #include "lmm_method.h"
 #include "sh_camera.h"
 #include "sh_error.h"
+#include "sh_reference.h"
 #include "sh_scene.h"
 
 #ifdef __cplusplus
@@ -66,16 +67,14 @@ typedef struct lmm_render_options {
 typedef struct lmm_render_stats {
   lmm_mode mode;
   lmm_scheme scheme; /* the one used (never DEFAULT) */
-  int width, height, spp, max_depth, threads; /* width, height: the image
-                                                 rendered (the crop's) */
+  int width, height, spp, max_depth; /* width, height: the image rendered
+                                        (the crop's) */
   uint64_t seed;
   double seconds;        /* the whole call: set-up and render */
-  double render_seconds; /* the tracing alone */
-  uint64_t camera_rays, closest_rays, occlusion_rays, medium_samples;
-  double noise_rel_rms;  /* the image's own noise, estimated
-                            (sh_reference_stats); 0 when not estimated */
-  long noise_pixels;     /* pixels rendered twice for it (0: lmm and
-                            sphere-light modes, whose hooks keep caches) */
+  /* The tracing's own (sh_reference.h): its seconds, threads, ray and
+   * medium-sample counts and the image's noise, estimated (not in lmm and
+   * sphere-light modes, whose hooks keep caches: noise_pixels 0). */
+  sh_reference_stats trace;
   int has_lmm;           /* lmm mode: the fields below are filled */
   double mesh_step, kl;
   lmm_stats lmm;

@@ -94,7 +94,7 @@ static void test_modes(const sh_scene *s) {
   SH_CHECK(ref.rgb && memcmp(ref.rgb, rgb, sizeof *rgb * (size_t)n) == 0);
   SH_CHECK(st.mode == LMM_MODE_REFERENCE && st.spp == 2 && !st.has_lmm &&
            st.scheme == LMM_SCHEME_REFRACT_TRACE && st.width == 48 &&
-           st.camera_rays == 48 * 32 && st.seconds >= st.render_seconds);
+           st.trace.camera_rays == 48 * 32 && st.seconds >= st.trace.seconds);
   sh_image_free(&ref);
 
   lmm_render_options_set(&o, "mode", "lmm", NULL);
@@ -169,7 +169,7 @@ static void test_crop(const sh_scene *s) {
     o.threads = 2;
     o.crop = crop;
     SH_CHECK(lmm_render(s, &o, part, &st, &err) == SH_OK);
-    SH_CHECK(st.width == cw && st.height == ch && st.camera_rays == (uint64_t)cw * ch);
+    SH_CHECK(st.width == cw && st.height == ch && st.trace.camera_rays == (uint64_t)cw * ch);
     int same = 1;
     for (int y = 0; y < ch; y++)
       same &= !memcmp(part + 3 * (size_t)y * cw,

@@ -137,15 +137,15 @@ static sh_status write_outputs(const sh_cli_render *r,
 #define NOISE_WARNING 0.01
 
 static void warn_noise(const lmm_render_stats *st) {
-  if (st->mode != LMM_MODE_REFERENCE || st->noise_rel_rms <= NOISE_WARNING)
+  if (st->mode != LMM_MODE_REFERENCE || st->trace.noise_rel_rms <= NOISE_WARNING)
     return;
-  double ratio = st->noise_rel_rms / (NOISE_WARNING / 2);
+  double ratio = st->trace.noise_rel_rms / (NOISE_WARNING / 2);
   fprintf(stderr,
           "%s: warning: this reference's own noise is about %.2g%% (relative "
           "RMS, estimated from %ld pixels rendered twice); errors measured "
           "against it below about that level are its noise; --spp %.0f "
           "brings it to %.2g%% or less (it falls at least as 1/sqrt(spp))\n",
-          TOOL, 100 * st->noise_rel_rms, st->noise_pixels,
+          TOOL, 100 * st->trace.noise_rel_rms, st->trace.noise_pixels,
           ceil(st->spp * ratio * ratio), 100 * NOISE_WARNING / 2);
 }
 

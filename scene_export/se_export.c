@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "se_text.h"
+#include "sh_array.h"
 #include "sh_outputs.h"
 
 void se_note(se_notes *notes, const char *fmt, ...) {
@@ -17,16 +18,13 @@ void se_note(se_notes *notes, const char *fmt, ...) {
   va_end(ap);
   for (int i = 0; i < notes->count; i++)
     if (!strcmp(notes->text[i], msg)) return; /* say each thing once */
-  if (notes->count == notes->cap) {
-    int cap = notes->cap ? 2 * notes->cap : 8;
-    char **t = realloc(notes->text, sizeof *t * (size_t)cap);
-    if (!t) {
-      notes->failed = 1;
-      return;
-    }
-    notes->text = t;
-    notes->cap = cap;
+  char **t = sh__array_grow(notes->text, notes->count, &notes->cap, 8,
+                            sizeof *t);
+  if (!t) {
+    notes->failed = 1;
+    return;
   }
+  notes->text = t;
   char *copy = malloc(strlen(msg) + 1);
   if (!copy) {
     notes->failed = 1;
@@ -57,15 +55,11 @@ void se_notes_comment(const se_notes *notes, se_buf *b, const char *prefix) {
 }
 
 static se_file *add_file(se_output *out, const char *path) {
-  if (out->count == out->cap) {
-    int cap = out->cap ? 2 * out->cap : 4;
-    se_file *f = realloc(out->files, sizeof *f * (size_t)cap);
-    if (!f) return NULL;
-    out->files = f;
-    out->cap = cap;
-  }
-  se_file *f = &out->files[out->count];
-  memset(f, 0, sizeof *f);
+  se_file *files = sh__array_grow(out->files, out->count, &out->cap, 4,
+                                  sizeof *files);
+  if (!files) return NULL;
+  out->files = files;
+  se_file *f = &files[out->count];
   f->path = malloc(strlen(path) + 1);
   if (!f->path) return NULL;
   strcpy(f->path, path);
