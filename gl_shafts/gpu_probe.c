@@ -15,14 +15,28 @@
 #include <string.h>
 
 #include "gs_context.h"
+#include "sh_cli.h"
+
+static const sh_cli_tool tool = {
+    .name = "gl_shafts_gpu_probe",
+    .synopsis = "[egl|auto|osmesa]",
+    .description = "Lists the devices EGL's device platform sees and the GL "
+                   "context gl_shafts gets\nfrom a backend (default egl), as "
+                   "lines of \"key: value\" (gpu_check.sh).",
+    .max_operands = 1};
 
 int main(int argc, char **argv) {
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, NULL, &parsed);
+  if (rc >= 0) return rc;
+  const char *name = parsed.noperands ? parsed.operands[0] : "egl";
   gs_backend backend = GS_BACKEND_EGL;
-  if (argc > 1 && !strcmp(argv[1], "auto")) backend = GS_BACKEND_AUTO;
-  else if (argc > 1 && !strcmp(argv[1], "osmesa")) backend = GS_BACKEND_OSMESA;
-  else if (argc > 1 && strcmp(argv[1], "egl")) {
-    fprintf(stderr, "usage: gl_shafts_gpu_probe [egl|auto|osmesa]\n");
-    return 2;
+  if (!strcmp(name, "auto")) backend = GS_BACKEND_AUTO;
+  else if (!strcmp(name, "osmesa")) backend = GS_BACKEND_OSMESA;
+  else if (strcmp(name, "egl")) {
+    fprintf(stderr, "%s: the backend is egl, auto or osmesa, not '%s'\n",
+            tool.name, name);
+    return SH_EXIT_BAD_INPUT;
   }
   static char devices[16384];
   int hw = gs__egl_devices(devices, sizeof devices);

@@ -19,29 +19,56 @@
  * live_bench.sh runs the standard set and docs/gl_shafts.md ("Live mode")
  * quotes it. */
 #include <jansson.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_util.h"
 #include "gs_render.h"
+#include "sh_cli.h"
 #include "sh_parse.h"
 #include "sh_time.h"
 #include "shafts.h"
 
 static const char *const TOOL = "gl_shafts_live_bench";
 
-static void usage(FILE *f) {
-  fprintf(f,
-"usage: gl_shafts_live_bench [options] SCENE.json...\n"
-"\n"
-"options:\n"
-"  --size W H        render at W x H (default 640 480)\n"
-"  --frames N        frames timed per row (default 9)\n"
-"  --backend B       auto, egl or osmesa (default auto)\n"
-"  --count baked|live  only draw warm frames of that kind, instrumented for\n"
-"                    valgrind --tool=callgrind --instr-atstart=no\n");
-}
+typedef struct args {
+  long size[2], frames;
+  int backend;
+  int counting; /* -1: the table; 0 or 1: count baked or live frames */
+} args;
+
+static const sh_cli_choice backends[] = {{"auto", GS_BACKEND_AUTO},
+                                         {"egl", GS_BACKEND_EGL},
+                                         {"osmesa", GS_BACKEND_OSMESA},
+                                         {NULL, 0}};
+static const sh_cli_choice kinds[] = {{"baked", 0}, {"live", 1}, {NULL, 0}};
+
+#define FIELD(f) offsetof(args, f)
+static const sh_cli_option options[] = {
+    {"size", 0, SH_CLI_INT, "W H", 2, FIELD(size), 1, 16384, 0, 0, NULL, NULL,
+     NULL, "640 480", "render at W x H"},
+    {"frames", 0, SH_CLI_INT, "N", 1, FIELD(frames), 1, 1000, 0, 0, NULL, NULL,
+     NULL, "9", "frames timed per row"},
+    {"backend", 0, SH_CLI_CHOICE, NULL, 0, FIELD(backend), 0, 0, 0, 0,
+     backends, NULL, NULL, "auto", "where the GL context comes from"},
+    {"count", 0, SH_CLI_CHOICE, NULL, 0, FIELD(counting), 0, 0, 0, 0, kinds,
+     NULL, NULL, NULL,
+     "only draw warm frames of that kind, instrumented for valgrind "
+     "--tool=callgrind --instr-atstart=no"},
+};
+
+static const sh_cli_tool tool = {
+    .name = TOOL,
+    .synopsis = "[options] SCENE.json...",
+    .description = "Times the frame a viewport pays after an edit, baked "
+                   "programs against live\nones, as a Markdown table "
+                   "(live_bench.sh; docs/gl_shafts.md, \"Live mode\").",
+    .options = options,
+    .noptions = (int)(sizeof options / sizeof *options),
+    .min_operands = 1,
+    .max_operands = SH_CLI_MAX_OPERANDS};
 
 static double median(double *v, int n) {
   qsort(v, (size_t)n, sizeof *v, bench_cmp_double);
@@ -217,43 +244,15 @@ static sh_status bench(const char *path, int w, int h, int frames, gs_backend ba
 }
 
 int main(int argc, char **argv) {
-  int w = 640, h = 480, frames = 9, nscenes = 0, counting = -1;
-  gs_backend backend = GS_BACKEND_AUTO;
-  const char **scenes = calloc((size_t)argc, sizeof *scenes);
-  if (!scenes) return 1;
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i];
-    if (!strcmp(o, "-h") || !strcmp(o, "--help")) {
-      usage(stdout);
-      free(scenes);
-      return 0;
-    } else if (!strcmp(o, "--size") && i + 2 < argc) {
-      w = atoi(argv[++i]);
-      h = atoi(argv[++i]);
-    } else if (!strcmp(o, "--frames") && i + 1 < argc) {
-      frames = atoi(argv[++i]);
-    } else if (!strcmp(o, "--backend") && i + 1 < argc) {
-      const char *b = argv[++i];
-      backend = !strcmp(b, "egl") ? GS_BACKEND_EGL
-                : !strcmp(b, "osmesa") ? GS_BACKEND_OSMESA : GS_BACKEND_AUTO;
-      if (backend == GS_BACKEND_AUTO && strcmp(b, "auto")) w = 0;
-    } else if (!strcmp(o, "--count") && i + 1 < argc) {
-      const char *m = argv[++i];
-      counting = !strcmp(m, "live") ? 1 : !strcmp(m, "baked") ? 0 : -2;
-      if (counting == -2) w = 0;
-    } else if (o[0] == '-') {
-      w = 0;
-    } else {
-      scenes[nscenes++] = o;
-    }
-  }
-  if (w < 1 || h < 1 || w > 16384 || h > 16384 || frames < 1 || frames > 1000 ||
-      nscenes == 0) {
-    usage(stderr);
-    free(scenes);
-    return 2;
-  }
-  int rc = 0;
+  args a = {{640, 480}, 9, GS_BACKEND_AUTO, -1};
+  sh_cli_args parsed;
+  int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
+  if (rc >= 0) return rc;
+  int w = (int)a.size[0], h = (int)a.size[1], frames = (int)a.frames;
+  gs_backend backend = (gs_backend)a.backend;
+  const char *const *scenes = parsed.operands;
+  int nscenes = parsed.noperands, counting = a.counting;
+  rc = 0;
   for (int i = 0; i < nscenes && rc == 0; i++) {
     sh_error err;
     sh_status st = counting >= 0 ? count(scenes[i], counting, w, h, frames, backend, &err)
@@ -263,6 +262,5 @@ int main(int argc, char **argv) {
       rc = 1;
     }
   }
-  free(scenes);
   return rc;
 }

@@ -11,7 +11,7 @@ const se_target se_targets[] = {
      "NAME_map<i>.exr; `povray NAME.ini` in DIR renders DIR/NAME.exr"},
     {"blender", "py", se_blender_build,
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
-     "NAME.blender.json and light maps NAME.blender_map<i>.exr; render with "
+     "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "
      "blender -b -P DIR/NAME.py -- --engine cycles|eevee --out IMG.exr "
      "[--samples N] [--seed S] (EEVEE needs a display: run it under "
      "xvfb-run)"},
