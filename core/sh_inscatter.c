@@ -133,7 +133,11 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
      * to 1/r^2 along the ray. */
     double bt = sh_dot(sh_sub(l->position, o), d);
     double h = sh_length(sh_sub(sh_madd(o, d, bt), l->position));
-    h = fmax(h, 1e-9 * (fabs(bt) + 1.0));
+    /* A ray through the light: a floor relative to the lengths at hand
+     * (an absolute one would swamp a scene a billionth of a unit across). */
+    double span = isfinite(b - a) ? b - a : fabs(a);
+    h = fmax(h, 1e-9 * (fabs(bt) + span));
+    if (!(h > 0)) return sum;
     double ta = atan2(a - bt, h), tb = atan2(b - bt, h);
     for (int i = 0; i < n; i++) {
       double u = (i + sh_rng_next(rng)) / n;

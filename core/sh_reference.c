@@ -46,7 +46,7 @@ static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
   sh_vec3 sum = sh_v3s(0.0);
   int has_spec = !sh_is_black(mat->specular);
   if (sh_is_black(mat->diffuse) && !has_spec) return sum;
-  sh_vec3 origin = sh_rt_offset(p, n);
+  sh_vec3 origin = sh_rt_offset(w->job->rt, p, n);
   const sh_shadow_hook *hook = w->job->opt->hook;
   int hooked = hook && hook->surface &&
                hook->surface(hook->user, w->index, p, n, shape, w->vis,
@@ -88,7 +88,7 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
   if (depth >= opt->max_depth) return L;
   sh_vec3 reflected = sh_reflect(d, n);
   if (!opt->local && !sh_is_black(mat->reflect))
-    L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset(h->p, n),
+    L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset(w->job->rt, h->p, n),
                                              reflected, depth + 1, rng)));
   if (!sh_is_black(mat->transmit)) {
     /* Snell's law; the inside of a closed shape has index `ior`. Total
@@ -102,10 +102,10 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
     sh_vec3 dir, org;
     if (k < 0) {
       dir = reflected;
-      org = sh_rt_offset(h->p, n);
+      org = sh_rt_offset(w->job->rt, h->p, n);
     } else {
       dir = sh_normalize(sh_madd(sh_scale(d, eta), n, eta * ci - sqrt(k)));
-      org = sh_rt_offset(h->p, sh_neg(n));
+      org = sh_rt_offset(w->job->rt, h->p, sh_neg(n));
     }
     if (eta == 1.0) dir = d; /* straight on, exactly */
     L = sh_add(L, sh_mul(mat->transmit, trace(w, org, dir, depth + 1, rng)));

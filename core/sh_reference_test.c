@@ -94,7 +94,7 @@ static void shadow_transmittance(void) {
                            &h, NULL));
   SH_CHECK_NEAR(h.t, 4.0, 1e-6, 0);
   SH_CHECK_NEAR(h.ng.z, 1.0, 1e-9, 0);
-  sh_vec3 org = sh_rt_offset(h.p, sh_neg(h.ng));
+  sh_vec3 org = sh_rt_offset(rt, h.p, sh_neg(h.ng));
   SH_CHECK(sh_rt_intersect(rt, org, sh_v3(0, 0, -1), 0, INFINITY, &h, NULL));
   SH_CHECK_NEAR(h.t, 2.0, 1e-5, 0);
   SH_CHECK_NEAR(h.ng.z, -1.0, 1e-9, 0);

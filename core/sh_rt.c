@@ -13,8 +13,9 @@
  * in object space for the user-geometry callbacks. */
 typedef struct sh__prim {
   const sh_shape *shape;
+  const sh_rt *rt;
   int analytic;
-  float *verts;      /* world-space triangle vertices, 3 floats each */
+  float *verts;      /* triangle vertices in the rt's frame, 3 floats each */
   unsigned *indices; /* 3 per triangle */
   int nverts, ntris;
   /* Cylinder frame in object space. */
@@ -24,8 +25,22 @@ typedef struct sh__prim {
   int identity;  /* the shape has no transform: skip the matrices */
 } sh__prim;
 
+/* Embree holds single-precision floats, whose ulp grows with the distance
+ * from the origin, and the ray offsets' constants are meant for
+ * coordinates of order 1: a scene far from the origin, or a very small or
+ * very large one, loses its detail. So Embree sees the scene in a frame of
+ * its own, q = (p - origin) / unit, fitted to the shapes' bounds by
+ * sh_frame_fit, so that every shape lies within BALL units of the
+ * origin. A ray from further than FAR_UNITS units away starts at the
+ * closest point of that ball it can reach (in double precision), so that
+ * a far camera's rays keep their precision. */
+#define BALL 2.0
+enum { FAR_UNITS = 4 };
+
 struct sh_rt {
   RTCDevice device;
+  sh_vec3 origin; /* the frame's origin, world space */
+  double unit;    /* the frame's unit length, world space */
   RTCScene scene_all; /* every shape, with its class as geometry mask */
   const sh_scene *scene;
   sh__prim *prims;
@@ -123,12 +138,17 @@ static int analytic_hit(const sh__prim *pr, sh_vec3 o, sh_vec3 d, double tnear,
   return found;
 }
 
+/* The ray of lane i in world space (t in the frame's units: world length
+ * / unit), against the exact shape; *t in the frame's units. */
 static int analytic_query(const sh__prim *pr, const float *ray, unsigned N,
                           unsigned i, double *t, sh_vec3 *n) {
+  const sh_rt *rt = pr->rt;
   sh_vec3 o = sh_v3(SOA(ray, RAY_ORG_X, N, i), SOA(ray, RAY_ORG_Y, N, i),
                     SOA(ray, RAY_ORG_Z, N, i));
+  o = sh_madd(rt->origin, o, rt->unit);
   sh_vec3 d = sh_v3(SOA(ray, RAY_DIR_X, N, i), SOA(ray, RAY_DIR_Y, N, i),
                     SOA(ray, RAY_DIR_Z, N, i));
+  d = sh_scale(d, rt->unit);
   const sh_shape *s = pr->shape;
   if (!pr->identity) {
     o = sh_xform_point(&s->inv, o);
@@ -184,6 +204,8 @@ static void analytic_bounds(const struct RTCBoundsFunctionArguments *a) {
   const sh__prim *pr = a->geometryUserPtr;
   sh_vec3 wlo, whi;
   sh_shape_bounds(pr->shape, &wlo, &whi);
+  wlo = sh_scale(sh_sub(wlo, pr->rt->origin), 1.0 / pr->rt->unit);
+  whi = sh_scale(sh_sub(whi, pr->rt->origin), 1.0 / pr->rt->unit);
   /* Pad by a relative epsilon: the bounds must hold the float hits. */
   double pad = 1e-6 * (sh_max3(sh_vmax(sh_neg(wlo), whi)) + 1.0);
   a->bounds_o->lower_x = (float)(wlo.x - pad);
@@ -194,8 +216,10 @@ static void analytic_bounds(const struct RTCBoundsFunctionArguments *a) {
   a->bounds_o->upper_z = (float)(whi.z + pad);
 }
 
-static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
+static sh_status prim_init(sh_rt *rt, sh__prim *pr, const sh_shape *s,
+                           sh_error *err) {
   pr->shape = s;
+  pr->rt = rt;
   sh_mat4 id = sh_mat4_identity();
   pr->identity = memcmp(&s->xform, &id, sizeof id) == 0;
   if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER) {
@@ -208,8 +232,11 @@ static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
     return SH_OK;
   }
   sh_mesh m = {0};
-  /* The error bound only matters for curved shapes, which stay exact here. */
-  sh_status st = sh_mesh_tessellate(s, 1.0, &m, err);
+  /* The error bound only matters for curved shapes, which stay exact here.
+   * Tessellated about the frame's origin, in the shape's object space, so
+   * that the float vertices keep their precision. */
+  sh_vec3 oo = sh_xform_point(&s->inv, rt->origin);
+  sh_status st = sh_mesh_tessellate_about(s, 1.0, oo, &m, err);
   if (st != SH_OK) return st;
   pr->nverts = m.nverts;
   pr->ntris = m.ntris;
@@ -217,7 +244,8 @@ static sh_status prim_init(sh__prim *pr, const sh_shape *s, sh_error *err) {
   pr->verts = m.positions;
   for (int v = 0; v < m.nverts; v++) {
     float *p = pr->verts + 3 * v;
-    sh_vec3 w = sh_xform_point(&s->xform, sh_v3(p[0], p[1], p[2]));
+    sh_vec3 w = sh_xform_point(&s->xform, sh_add(oo, sh_v3(p[0], p[1], p[2])));
+    w = sh_scale(sh_sub(w, rt->origin), 1.0 / rt->unit);
     p[0] = (float)w.x;
     p[1] = (float)w.y;
     p[2] = (float)w.z;
@@ -268,6 +296,18 @@ static unsigned shape_class(const sh_scene *scene, const sh_shape *s) {
   return semi ? SH_RT_SEMI_HARD : SH_RT_OPAQUE_HARD;
 }
 
+/* The frame Embree sees (above), fitted to the shapes' bounds. */
+static void frame_init(sh_rt *rt, const sh_scene *scene) {
+  sh_vec3 lo = sh_v3s(INFINITY), hi = sh_v3s(-INFINITY);
+  for (int i = 0; i < scene->nshapes; i++) {
+    sh_vec3 a, b;
+    sh_shape_bounds(&scene->shapes[i], &a, &b);
+    lo = sh_vmin(lo, a);
+    hi = sh_vmax(hi, b);
+  }
+  sh_frame_fit(lo, hi, &rt->origin, &rt->unit);
+}
+
 sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
   *out = NULL;
   sh_rt *rt = calloc(1, sizeof *rt);
@@ -279,6 +319,7 @@ sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
     return sh_error_set(err, SH_ERR_DEVICE, "cannot create an Embree device");
   }
   rtcSetDeviceErrorFunction(rt->device, on_device_error, rt);
+  frame_init(rt, scene);
   rt->prims = calloc((size_t)scene->nshapes + 1, sizeof *rt->prims);
   rt->scene_all = new_scene(rt);
   sh_status st = SH_OK;
@@ -292,7 +333,7 @@ sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++) {
     const sh_shape *s = &scene->shapes[i];
     sh__prim *pr = &rt->prims[i];
-    st = prim_init(pr, s, err);
+    st = prim_init(rt, pr, s, err);
     if (st != SH_OK) break;
     pr->mask = shape_class(scene, s);
     rt->classes |= pr->mask;
@@ -330,20 +371,45 @@ void sh_rt_free(sh_rt *rt) {
   free(rt);
 }
 
-static void set_ray(struct RTCRay *r, sh_vec3 o, sh_vec3 d, double tmin,
-                    double tmax, unsigned mask) {
-  r->org_x = (float)o.x;
-  r->org_y = (float)o.y;
-  r->org_z = (float)o.z;
+/* The world-space ray o + t d, t in (tmin, tmax), in the frame Embree
+ * sees. A ray from far away starts where it can first reach the unit ball:
+ * returns that skipped world length, to add to the hit distances. */
+static double set_ray(const sh_rt *rt, struct RTCRay *r, sh_vec3 o, sh_vec3 d,
+                      double tmin, double tmax, unsigned mask) {
+  double inv = 1.0 / rt->unit;
+  sh_vec3 q = sh_scale(sh_sub(o, rt->origin), inv);
+  double skip = 0.0;
+  double dd = sh_dot(d, d);
+  if (sh_dot(q, q) > FAR_UNITS * FAR_UNITS && dd > 0) {
+    /* Nothing lies on the ray before the foot of the perpendicular from
+     * the origin less the ball's radius (with a margin for the float
+     * vertices), nor after tmax. */
+    double foot = -sh_dot(q, d) / dd, radius = BALL / sqrt(dd);
+    skip = fmin(fmax(foot - radius, 0.0) * rt->unit, tmax);
+    if (skip > 0) {
+      q = sh_scale(sh_sub(sh_madd(o, d, skip), rt->origin), inv);
+      tmin = fmax(tmin - skip, 0.0);
+      tmax -= skip;
+    }
+  }
+  r->org_x = (float)q.x;
+  r->org_y = (float)q.y;
+  r->org_z = (float)q.z;
   r->dir_x = (float)d.x;
   r->dir_y = (float)d.y;
   r->dir_z = (float)d.z;
-  r->tnear = (float)tmin;
-  r->tfar = tmax >= FLT_MAX ? INFINITY : (float)tmax;
+  r->tnear = (float)(tmin * inv);
+  r->tfar = tmax * inv >= FLT_MAX ? INFINITY : (float)(tmax * inv);
   r->time = 0.0f;
   r->mask = mask;
   r->id = 0;
   r->flags = 0;
+  return skip;
+}
+
+/* A world-space point from the frame Embree sees. */
+static sh_vec3 from_frame(const sh_rt *rt, const float *q) {
+  return sh_madd(rt->origin, sh_v3(q[0], q[1], q[2]), rt->unit);
 }
 
 static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
@@ -351,7 +417,7 @@ static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   struct RTCRayHit rh;
-  set_ray(&rh.ray, o, d, tmin, tmax, mask);
+  double skip = set_ray(rt, &rh.ray, o, d, tmin, tmax, mask);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -361,7 +427,7 @@ static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
   const sh__prim *pr = &rt->prims[rh.hit.geomID];
   hit->shape = (int)rh.hit.geomID;
-  hit->t = rh.ray.tfar;
+  hit->t = skip + rh.ray.tfar * rt->unit;
   if (pr->analytic) {
     hit->p = sh_madd(o, d, hit->t);
     hit->ng = sh_normalize(sh_v3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
@@ -376,8 +442,8 @@ static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
     const unsigned *ix = pr->indices + 3 * rh.hit.primID;
     const float *a = pr->verts + 3 * ix[0], *b = pr->verts + 3 * ix[1],
                 *c = pr->verts + 3 * ix[2];
-    sh_vec3 va = sh_v3(a[0], a[1], a[2]), vb = sh_v3(b[0], b[1], b[2]),
-            vc = sh_v3(c[0], c[1], c[2]);
+    sh_vec3 va = from_frame(rt, a), vb = from_frame(rt, b),
+            vc = from_frame(rt, c);
     double u = rh.hit.u, v = rh.hit.v;
     hit->p = sh_add(sh_add(sh_scale(va, 1.0 - u - v), sh_scale(vb, u)),
                     sh_scale(vc, v));
@@ -398,7 +464,7 @@ int sh_rt_occluded(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
   struct RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   struct RTCRay r;
-  set_ray(&r, o, d, 0.0, tmax, classes);
+  set_ray(rt, &r, o, d, 0.0, tmax, classes);
   if (c) c->occlusion++;
   rtcOccluded1(rt->scene_all, &ctx, &r);
   return r.tfar < 0;
@@ -421,7 +487,7 @@ sh_vec3 sh_rt_visibility_of(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
     vis = sh_mul(vis, rt->scene->materials[rt->scene->shapes[h.shape].material]
                           .transmit);
     if (sh_max3(vis) <= 0) break;
-    t = h.t + fmax(1e-5 * h.t, 1e-6);
+    t = h.t + fmax(1e-5 * h.t, 1e-6 * rt->unit);
   }
   return vis;
 }
@@ -451,12 +517,14 @@ void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
                             const sh_vec3 *d, double *t, int *shape,
                             int coherent, sh_rt_counters *c) {
   struct RTCRayHit rh[STREAM_BATCH];
+  double skip[STREAM_BATCH];
   struct RTCIntersectContext ctx;
   stream_context(&ctx, coherent);
   for (int base = 0; base < n; base += STREAM_BATCH) {
     int m = stream_batch(n, base);
     for (int i = 0; i < m; i++) {
-      set_ray(&rh[i].ray, o[base + i], d[base + i], 0.0, INFINITY, SH_RT_ALL);
+      skip[i] = set_ray(rt, &rh[i].ray, o[base + i], d[base + i], 0.0,
+                        INFINITY, SH_RT_ALL);
       rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
       rh[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
       rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -466,7 +534,7 @@ void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
     rtcIntersect1M(rt->scene_all, &ctx, rh, (unsigned)m, sizeof rh[0]);
     for (int i = 0; i < m; i++) {
       int miss = rh[i].hit.geomID == RTC_INVALID_GEOMETRY_ID;
-      t[base + i] = miss ? INFINITY : rh[i].ray.tfar;
+      t[base + i] = miss ? INFINITY : skip[i] + rh[i].ray.tfar * rt->unit;
       shape[base + i] = miss ? -1 : (int)rh[i].hit.geomID;
     }
   }
@@ -483,7 +551,8 @@ void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
   for (int base = 0; base < n; base += STREAM_BATCH) {
     int m = stream_batch(n, base);
     for (int i = 0; i < m; i++)
-      set_ray(&r[i], o[base + i], d[base + i], 0.0, tmax[base + i], classes);
+      set_ray(rt, &r[i], o[base + i], d[base + i], 0.0, tmax[base + i],
+              classes);
     rtcOccluded1M(rt->scene_all, &ctx, r, (unsigned)m, sizeof r[0]);
     for (int i = 0; i < m; i++) occluded[base + i] = r[i].tfar < 0;
   }
@@ -502,8 +571,12 @@ static float offset_float(float p, float n) {
   return fabsf(p) < origin ? p + float_scale * n : pi;
 }
 
-sh_vec3 sh_rt_offset(sh_vec3 p, sh_vec3 n) {
-  return sh_v3(offset_float((float)p.x, (float)n.x),
-               offset_float((float)p.y, (float)n.y),
-               offset_float((float)p.z, (float)n.z));
+sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n) {
+  /* In the frame Embree sees, where the method's constants are meant:
+   * coordinates of order 1. */
+  sh_vec3 q = sh_scale(sh_sub(p, rt->origin), 1.0 / rt->unit);
+  float f[3] = {offset_float((float)q.x, (float)n.x),
+                offset_float((float)q.y, (float)n.y),
+                offset_float((float)q.z, (float)n.z)};
+  return from_frame(rt, f);
 }

@@ -107,9 +107,12 @@ unsigned sh_rt_classes(const sh_rt *rt);
 
 /* A ray origin for leaving surface point p along a direction on the side of
  * the unit normal n (pass -n for the other side): p moved off the surface
- * by a few float ulps, so that the new ray cannot hit the surface it
- * leaves (Waechter and Binder, Ray Tracing Gems, ch. 6). */
-sh_vec3 sh_rt_offset(sh_vec3 p, sh_vec3 n);
+ * by a few float ulps of the frame Embree sees (centred on the shapes and
+ * scaled to their size, so the offset is the same fraction of the scene
+ * wherever it sits and however large it is), so that the new ray cannot
+ * hit the surface it leaves (Waechter and Binder, Ray Tracing Gems,
+ * ch. 6). */
+sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n);
 
 #ifdef __cplusplus
 }

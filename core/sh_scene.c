@@ -1,6 +1,7 @@
 #include "sh_scene.h"
 
 #include <float.h>
+#include <math.h>
 #include <stdlib.h>
 
 void sh_scene_free(sh_scene *scene) {
@@ -133,4 +134,17 @@ void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax) {
   if (lo.x > hi.x) lo = hi = sh_v3s(0.0);
   *bmin = lo;
   *bmax = hi;
+}
+
+void sh_frame_fit(sh_vec3 lo, sh_vec3 hi, sh_vec3 *origin, double *unit) {
+  *origin = sh_v3s(0.0);
+  *unit = 1.0;
+  if (!(lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z)) return;
+  sh_vec3 c = sh_scale(sh_add(lo, hi), 0.5);
+  double r = 0.5 * sh_length(sh_sub(hi, lo));
+  if (!(r > 0)) r = sh_max3(sh_vmax(sh_neg(c), c));
+  if (!(r > 0) || !isfinite(r)) return;
+  *unit = exp2(ceil(log2(r)));
+  *origin = sh_v3(*unit * round(c.x / *unit), *unit * round(c.y / *unit),
+                  *unit * round(c.z / *unit));
 }

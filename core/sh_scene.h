@@ -170,6 +170,17 @@ int sh_shape_bounds(const sh_shape *shape, sh_vec3 *bmin, sh_vec3 *bmax);
  * medium's bounds). */
 void sh_scene_bounds(const sh_scene *scene, sh_vec3 *bmin, sh_vec3 *bmax);
 
+/* A frame for single-precision work on the box [lo, hi]: *unit the power
+ * of two at or above half its diagonal (or, for a box of no size, its
+ * largest coordinate; 1 if that is 0 too) and *origin the multiple of
+ * *unit nearest its centre, so that the box lies within 2 units of the
+ * origin (half the diagonal is at most a unit, the centre within sqrt(3) /
+ * 2 of the origin), and moving into the frame, (p - origin) / unit, is
+ * exact for coordinates that are multiples of a small power of two of the
+ * unit (a floor at y = 0 stays at exactly 0, at any scale). Being
+ * quantised, the frame stays when the box moves or grows a little. */
+void sh_frame_fit(sh_vec3 lo, sh_vec3 hi, sh_vec3 *origin, double *unit);
+
 #ifdef __cplusplus
 }
 #endif

@@ -272,3 +272,27 @@ sh_status sh_mesh_tessellate(const sh_shape *shape, double max_error,
   return sh_error_set(err, SH_ERR_ARG, "unknown shape type %d",
                       (int)shape->type);
 }
+
+sh_status sh_mesh_tessellate_about(const sh_shape *shape, double max_error,
+                                   sh_vec3 origin, sh_mesh *out,
+                                   sh_error *err) {
+  if (!shape)
+    return sh_mesh_tessellate(shape, max_error, out, err);
+  /* The analytic shapes are moved before they become floats. */
+  sh_shape moved = *shape;
+  moved.center = sh_sub(shape->center, origin);
+  moved.bmin = sh_sub(shape->bmin, origin);
+  moved.bmax = sh_sub(shape->bmax, origin);
+  moved.base = sh_sub(shape->base, origin);
+  moved.top = sh_sub(shape->top, origin);
+  moved.corner = sh_sub(shape->corner, origin);
+  sh_status st = sh_mesh_tessellate(&moved, max_error, out, err);
+  if (st == SH_OK &&
+      (shape->type == SH_SHAPE_MESH || shape->type == SH_SHAPE_HEIGHTFIELD))
+    for (long i = 0; i < (long)out->nverts; i++)
+      sh__setv(out, i, sh_sub(sh_v3(out->positions[3 * i],
+                                    out->positions[3 * i + 1],
+                                    out->positions[3 * i + 2]),
+                              origin));
+  return st;
+}

@@ -38,6 +38,14 @@ extern "C" {
 sh_status sh_mesh_tessellate(const sh_shape *shape, double max_error,
                              sh_mesh *out, sh_error *err);
 
+/* As sh_mesh_tessellate, with positions p - origin (object space): the
+ * float positions then keep their precision for a shape far from the
+ * object-space origin (a quad 2e-6 across, 100 units away, collapsed to a
+ * line). Meshes and heightfields, stored in float already, gain nothing. */
+sh_status sh_mesh_tessellate_about(const sh_shape *shape, double max_error,
+                                   sh_vec3 origin, sh_mesh *out,
+                                   sh_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -259,6 +259,7 @@ int main(void) {
   if (!ctx) return 1;
   sh_error err = {0};
   gs__view_init(&t.view, t.scene, NULL);
+  t.view.anchor = sh_v3s(0.0); /* the twins take world-space inputs */
   if (gs__target_create(&t.target, W, H, &err) != SH_OK) {
     printf("FAIL: the target: %s\n", err.message);
     return 1;

@@ -103,12 +103,16 @@ static double shape_error(const sh_shape *s, const gs__view *view) {
   return 1.0;
 }
 
-/* Tessellates shape s with error e and appends its world-space triangles to
- * b, filling d (its range starting at b's end). */
-static sh_status shape_vertices(const sh_shape *s, double e, gs__shape_draw *d,
-                                vbuf *b, long *triangles, sh_error *err) {
+/* Tessellates shape s with error e and appends its triangles to b in the
+ * anchored space (gs_view.h), filling d (its range starting at b's end;
+ * its bounds and centre stay in world space). */
+static sh_status shape_vertices(const sh_shape *s, double e, sh_vec3 anchor,
+                                gs__shape_draw *d, vbuf *b, long *triangles,
+                                sh_error *err) {
   sh_mesh m = {0};
-  sh_status st = sh_mesh_tessellate(s, e, &m, err);
+  /* About the anchor, so that the float vertices keep their precision. */
+  sh_vec3 oo = sh_xform_point(&s->inv, anchor);
+  sh_status st = sh_mesh_tessellate_about(s, e, oo, &m, err);
   if (st != SH_OK) return st;
   d->error = e;
   d->xform = s->xform;
@@ -137,7 +141,7 @@ static sh_status shape_vertices(const sh_shape *s, double e, gs__shape_draw *d,
   for (int t = 0; t < m.ntris && st == SH_OK; t++) {
     sh_vec3 o[3], w[3];
     for (int k = 0; k < 3; k++) {
-      o[k] = vertex(&m, m.indices[3 * t + k]);
+      o[k] = sh_add(oo, vertex(&m, m.indices[3 * t + k]));
       w[k] = sh_xform_point(&s->xform, o[k]);
     }
     sh_vec3 fn = sh_cross(sh_sub(w[1], w[0]), sh_sub(w[2], w[0]));
@@ -147,7 +151,7 @@ static sh_status shape_vertices(const sh_shape *s, double e, gs__shape_draw *d,
     for (int k = 0; k < 3; k++) {
       sh_vec3 n = smooth_normal(s, o[k], on);
       n = sh_is_black(n) ? fn : sh_normalize(sh_xform_normal(&s->inv, n));
-      if (!push(b, w[k], n)) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+      if (!push(b, sh_sub(w[k], anchor), n)) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
       d->bmin = sh_vmin(d->bmin, w[k]);
       d->bmax = sh_vmax(d->bmax, w[k]);
     }
@@ -169,10 +173,12 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
   sh_status st = SH_OK;
   for (int i = 0; i < scene->nshapes && st == SH_OK; i++) {
     const sh_shape *s = &scene->shapes[i];
-    st = shape_vertices(s, shape_error(s, view), &g->shape[i], &b, &g->triangles, err);
+    st = shape_vertices(s, shape_error(s, view), view->anchor, &g->shape[i], &b,
+                        &g->triangles, err);
   }
   g->nshapes = scene->nshapes;
   g->nverts = (int)b.n;
+  g->anchor = view->anchor;
   if (st == SH_OK) {
     glCreateVertexArrays(1, &g->vao);
     glCreateBuffers(1, &g->vbo);
@@ -203,7 +209,7 @@ sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
                         scene->nshapes, g->nshapes);
   vbuf b = {0};
   sh_status st = SH_OK;
-  int whole = 0;
+  int whole = memcmp(&g->anchor, &view->anchor, sizeof g->anchor) != 0;
   for (int i = 0; i < g->nshapes && st == SH_OK && !whole; i++) {
     const sh_shape *s = &scene->shapes[i];
     gs__shape_draw *d = &g->shape[i];
@@ -212,7 +218,7 @@ sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
     gs__shape_draw nd = *d;
     long tris = 0;
     b.n = 0;
-    st = shape_vertices(s, e, &nd, &b, &tris, err);
+    st = shape_vertices(s, e, view->anchor, &nd, &b, &tris, err);
     if (st != SH_OK) break;
     /* Another tessellation may have another vertex count: then the whole
      * buffer is built again. */

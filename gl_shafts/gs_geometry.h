@@ -35,9 +35,11 @@ typedef struct gs__geometry {
   int nverts, nshapes;
   gs__shape_draw *shape;
   long triangles;
+  sh_vec3 anchor;      /* the view's anchor the triangles are relative to */
 } gs__geometry;
 
-/* Tessellates and uploads the scene's shapes. Spheres and cylinders get a
+/* Tessellates and uploads the scene's shapes, relative to the view's
+ * anchor (gs_view.h). Spheres and cylinders get a
  * tessellation error of a quarter pixel at their distance from the camera
  * (never below 1e-4 of their radius). */
 sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
@@ -46,7 +48,8 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
 /* Brings the triangles up to date with the scene's shape transforms and
  * the view (which sets curved shapes' tessellation): a shape that moved, or
  * whose tessellation error changed, is tessellated again and uploaded in
- * place; if its vertex count changed, the whole buffer is built again
+ * place; if its vertex count or the view's anchor changed, the whole
+ * buffer is built again
  * (*rebuilt = 1: the vertex array object is new). *changed = 1 if any
  * shape's triangles changed (what shadow maps are keyed by). The scene must
  * have the same shapes as when built (SH_ERR_ARG otherwise). */

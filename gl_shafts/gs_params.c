@@ -62,7 +62,8 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   gs__params_reset(p, fr->bake);
   defines(p, scene, ls, !fr->bake, extra);
   const sh_camera_frame *f = &view->frame;
-  gs__param_v3(p, "u_eye", f->origin);
+  /* Positions in the anchored space (gs_view.h). */
+  gs__param_v3(p, "u_eye", gs__anchored(view, f->origin));
   gs__param_v3(p, "u_fwd", f->forward);
   gs__param_v3(p, "u_rx", sh_scale(f->right, view->sx));
   gs__param_v3(p, "u_uy", sh_scale(f->up, view->sy));
@@ -77,15 +78,15 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   int on = m->present;
   gs__param_v3(p, "u_sigma_s", on ? m->sigma_s : sh_v3s(0));
   gs__param_v3(p, "u_sigma_t", on ? m->sigma_t : sh_v3s(0));
-  gs__param_v3(p, "u_bmin", on ? m->bmin : sh_v3s(0));
-  gs__param_v3(p, "u_bmax", on ? m->bmax : sh_v3s(0));
+  gs__param_v3(p, "u_bmin", on ? gs__anchored(view, m->bmin) : sh_v3s(0));
+  gs__param_v3(p, "u_bmax", on ? gs__anchored(view, m->bmax) : sh_v3s(0));
   gs__param_f(p, "u_g", on ? m->phase.g : 0.0);
   /* Without a light, zeros: common.glsl's functions name these. */
   static const sh_light none;
   static const gs__light_setup no_setup = {.light = &none};
   if (!ls) ls = &no_setup;
   const sh_light *l = ls->light;
-  gs__param_v3(p, "u_lpos", l->position);
+  gs__param_v3(p, "u_lpos", gs__anchored(view, l->position));
   gs__param_v3(p, "u_ldir", l->direction);
   gs__param_v3(p, "u_lpower",
                l->type == SH_LIGHT_DIRECTIONAL ? l->irradiance : l->intensity);
@@ -98,9 +99,14 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
                l->tan_outer > 0 ? 1.0 / l->tan_outer : 0.0);
   gs__param_v3(p, "u_map_right", l->map_right);
   gs__param_v3(p, "u_map_up", l->map_up);
-  gs__param_4f(p, "u_win_s", ls->win_s[0], ls->win_s[1], ls->win_s[2], ls->win_s[3]);
-  gs__param_4f(p, "u_win_t", ls->win_t[0], ls->win_t[1], ls->win_t[2], ls->win_t[3]);
-  gs__param_mat4(p, "u_shadow_mat", &ls->lookup);
+  const double *ws = ls->win_s, *wt = ls->win_t;
+  sh_vec3 a = view->anchor;
+  gs__param_4f(p, "u_win_s", ws[0], ws[1], ws[2],
+               ws[3] + ws[0] * a.x + ws[1] * a.y + ws[2] * a.z);
+  gs__param_4f(p, "u_win_t", wt[0], wt[1], wt[2],
+               wt[3] + wt[0] * a.x + wt[1] * a.y + wt[2] * a.z);
+  sh_mat4 lookup = gs__anchored_mat(view, &ls->lookup);
+  gs__param_mat4(p, "u_shadow_mat", &lookup);
   gs__param_f(p, "u_shadow_near", ls->shadow_near);
   return p;
 }

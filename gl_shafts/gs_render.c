@@ -230,7 +230,9 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
     gs__target_free(&r->target);
     st = gs__target_create(&r->target, w, h, err);
   }
-  /* The near plane follows the scene's bounds, which every part moves. */
+  /* The near plane and the anchor follow the scene's bounds, which every
+   * part moves (the anchor is quantised: it seldom moves, and then the
+   * triangles are uploaded again). */
   if (changed && st == SH_OK) gs__view_init(&r->view, scene, &r->opt.crop);
   if (st == SH_OK && (changed & (SH_CHANGED_CAMERA | SH_CHANGED_SHAPES))) {
     int rebuilt, moved;

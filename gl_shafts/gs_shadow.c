@@ -80,11 +80,11 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
                           "the shadow map's framebuffer is incomplete");
     const float zero = 0.0f;
     glClearNamedFramebufferfv(sm->fbo, GL_DEPTH, 0, &zero);
-    sh_mat4 inv;
-    if (!sh_mat4_inverse(ls->face_vp[f], &inv))
+    sh_mat4 inv, mvp = gs__anchored_mat(fr->view, &ls->face_vp[f]);
+    if (!sh_mat4_inverse(mvp, &inv))
       return sh_error_set(err, SH_ERR_DEVICE, "a shadow map's projection is singular");
     for (int k = 0; k < 2; k++) {
-      gs__uniform_mat4(prog[k], "u_mvp", &ls->face_vp[f]);
+      gs__uniform_mat4(prog[k], "u_mvp", &mvp);
       gs__uniform_mat4(prog[k], "u_mvp_inv", &inv);
       gs__uniform_2f(prog[k], "u_texel_ndc", 2.0 / res, 2.0 / res);
       gs__uniform_2f(prog[k], "u_ray_depths", d0, d1);
@@ -96,10 +96,11 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
       glUseProgram(prog[s->exact_sphere]);
       if (s->exact_sphere) {
         const sh_shape *sh = &scene->shapes[i];
-        gs__uniform_mat4(prog[1], "u_obj_inv", &sh->inv);
-        gs__uniform_v3(prog[1], "u_center", sh->center);
+        sh_mat4 obj_inv = gs__sphere_from_anchored(fr->view, sh);
+        gs__uniform_mat4(prog[1], "u_obj_inv", &obj_inv);
+        gs__uniform_v3(prog[1], "u_center", sh_v3s(0.0)); /* centred space */
         gs__uniform_f(prog[1], "u_radius", sh->radius);
-        gs__uniform_v3(prog[1], "u_inflate_center", s->center);
+        gs__uniform_v3(prog[1], "u_inflate_center", gs__anchored(fr->view, s->center));
         gs__uniform_f(prog[1], "u_inflate", s->inflate);
       }
       if (s->closed) {

@@ -82,10 +82,11 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
           int inside = sh_length(sh_sub(eye, sh->center)) < sh->radius;
           glEnable(GL_CULL_FACE);
           glCullFace(inside != s->mirrored ? GL_FRONT : GL_BACK);
-          gs__uniform_mat4(prog, "u_obj_inv", &sh->inv);
-          gs__uniform_v3(prog, "u_center", sh->center);
+          sh_mat4 obj_inv = gs__sphere_from_anchored(fr->view, sh);
+          gs__uniform_mat4(prog, "u_obj_inv", &obj_inv);
+          gs__uniform_v3(prog, "u_center", sh_v3s(0.0)); /* centred space */
           gs__uniform_f(prog, "u_radius", sh->radius);
-          gs__uniform_v3(prog, "u_inflate_center", s->center);
+          gs__uniform_v3(prog, "u_inflate_center", gs__anchored(fr->view, s->center));
           gs__uniform_f(prog, "u_inflate", s->inflate);
         }
         gs__uniform_v3(prog, "u_kd", m->diffuse);

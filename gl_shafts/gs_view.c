@@ -21,10 +21,24 @@ void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop) {
   sh_scene_bounds(scene, &lo, &hi);
   double size = sh_length(sh_sub(hi, lo));
   v->znear = 1e-5 * (size > 0 ? size : 1.0);
+  double unit;
+  sh_frame_fit(lo, hi, &v->anchor, &unit);
+}
+
+sh_vec3 gs__anchored(const gs__view *v, sh_vec3 p) { return sh_sub(p, v->anchor); }
+
+sh_mat4 gs__anchored_mat(const gs__view *v, const sh_mat4 *m) {
+  return sh_mat4_mul(*m, sh_mat4_translate(v->anchor));
+}
+
+sh_mat4 gs__sphere_from_anchored(const gs__view *v, const sh_shape *sphere) {
+  sh_mat4 m = gs__anchored_mat(v, &sphere->inv);
+  return sh_mat4_mul(sh_mat4_translate(sh_neg(sphere->center)), m);
 }
 
 sh_mat4 gs__view_proj(const gs__view *v) {
   const sh_camera_frame *f = &v->frame;
+  sh_vec3 eye = gs__anchored(v, f->origin);
   sh_vec3 rows[3] = {sh_scale(sh_madd(f->right, f->forward, -v->cx), 1.0 / v->sx),
                      sh_scale(sh_madd(f->up, f->forward, -v->cy), 1.0 / v->sy),
                      f->forward};
@@ -33,13 +47,13 @@ sh_mat4 gs__view_proj(const gs__view *v) {
     m.m[r][0] = rows[r].x;
     m.m[r][1] = rows[r].y;
     m.m[r][2] = rows[r].z;
-    m.m[r][3] = -sh_dot(rows[r], f->origin);
+    m.m[r][3] = -sh_dot(rows[r], eye);
   }
   m.m[2][3] = v->znear;
   m.m[3][0] = rows[2].x;
   m.m[3][1] = rows[2].y;
   m.m[3][2] = rows[2].z;
-  m.m[3][3] = -sh_dot(rows[2], f->origin);
+  m.m[3][3] = -sh_dot(rows[2], eye);
   return m;
 }
 

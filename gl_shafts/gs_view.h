@@ -25,15 +25,33 @@ typedef struct gs__view {
    * and likewise for y. */
   double cx, cy, sx, sy;
   double znear; /* the near plane's view depth */
+  /* GL sees every point as p - anchor (the "anchored" space): positions go
+   * to GL in single precision, whose ulp grows with the distance from the
+   * origin, so a scene a million units from the origin would keep a
+   * sixteenth of a unit. The anchor is the origin sh_frame_fit gives the
+   * scene's bounds (sh_scene_bounds): near their centre, and quantised, so
+   * that it seldom moves when the scene changes. */
+  sh_vec3 anchor;
 } gs__view;
 
 /* The scene's camera, of the window `crop` (NULL or all zero: the whole
  * image; it must have passed sh_crop_check); the near plane is set tiny
  * against the scene's size (float depth with reversed Z keeps its
- * precision). */
+ * precision); the anchor. */
 void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop);
 
-/* World to clip space: clip = ((x_v - cx z) / sx, (y_v - cy z) / sy,
+/* A world point or box corner in the anchored space. */
+sh_vec3 gs__anchored(const gs__view *v, sh_vec3 p);
+
+/* m (of world points) as a matrix of anchored points: m T(anchor). */
+sh_mat4 gs__anchored_mat(const gs__view *v, const sh_mat4 *m);
+
+/* An exact sphere's object space, centred on the sphere, from the
+ * anchored space: T(-centre) inv T(anchor) (the shape's own object space
+ * holds the world's offset when it has no transform). */
+sh_mat4 gs__sphere_from_anchored(const gs__view *v, const sh_shape *sphere);
+
+/* Anchored space to clip space: clip = ((x_v - cx z) / sx, (y_v - cy z) / sy,
  * znear, z), so the stored depth is znear / z (1 at the near plane, 0 at
  * infinity). */
 sh_mat4 gs__view_proj(const gs__view *v);

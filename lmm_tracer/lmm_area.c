@@ -29,7 +29,7 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
   (void)thread;
   (void)shape;
   const lmm_area *A = user;
-  sh_vec3 origin = sh_rt_offset(p, n);
+  sh_vec3 origin = sh_rt_offset(A->rt, p, n);
   /* Deterministic per point, so that images do not depend on threads. */
   sh_rng rng;
   sh_rng_seed(&rng, point_seed(p), 7);

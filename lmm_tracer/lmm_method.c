@@ -80,7 +80,7 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
   lmm_grid_cell(grid, sh_sub(p, sh_v3s(r)), lo);
   lmm_grid_cell(grid, sh_add(p, sh_v3s(r)), hi);
   for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s(0.0);
-  sh_vec3 origin = sh_rt_offset(p, n);
+  sh_vec3 origin = sh_rt_offset(L->rt, p, n);
   /* Steps 1 and 2: the grid points in the sphere, on the front side. */
   int nc = 0;
   for (int k = lo[2]; k <= hi[2] + 1; k++)

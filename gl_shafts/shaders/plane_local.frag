@@ -85,7 +85,9 @@ void main() {
   g_b = -dot(q, g_dn);
   g_foot = u_eye + g_b * g_dn;
   vec3 ev = u_lpos - g_foot;
-  g_h = max(length(ev), 1e-6 * (abs(g_b) + 1.0));
+  // A ray through the light: a floor relative to the ray's lengths (an
+  // absolute one swamps a scene a billionth of a unit across).
+  g_h = max(length(ev), 1e-6 * (abs(g_b) + hi * g_dl));
   g_e = ev / g_h;
   g_entry = iv.z * g_dl;
 #if LIGHT_TYPE == GS_LIGHT_SPOT

@@ -24,8 +24,12 @@ void main() {
   vec3 d = view_ray(gl_FragCoord.xy);
   vec3 oc = (u_obj_inv * vec4(u_eye, 1.0)).xyz - u_center;
   vec3 od = (u_obj_inv * vec4(d, 0.0)).xyz;
+  // The discriminant B^2 - A (|oc|^2 - r^2) as A (r^2 - |f|^2), f the
+  // ray's point nearest to the centre: the first form cancels when the
+  // camera is far from the sphere (Haines et al., Ray Tracing Gems, ch. 7).
   precise float A = dot(od, od), B = dot(oc, od);
-  precise float disc = B * B - A * (dot(oc, oc) - u_radius * u_radius);
+  precise vec3 f = oc - (B / A) * od;
+  precise float disc = A * (u_radius * u_radius - dot(f, f));
   if (disc < 0.0) discard;
   precise float t = (-B - sqrt(disc)) / A;
   if (t < u_near) t = (-B + sqrt(disc)) / A; // the camera is inside
