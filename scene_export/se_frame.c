@@ -1,12 +1,12 @@
 #include "se_frame.h"
 
-se_frame se_frame_pov(double scale) {
-  se_frame f = {{0, 1, 2}, {1, 1, -1}, scale};
+se_frame se_frame_pov(double scale, sh_vec3 origin) {
+  se_frame f = {{0, 1, 2}, {1, 1, -1}, scale, origin};
   return f;
 }
 
 se_frame se_frame_blender(void) {
-  se_frame f = {{0, 2, 1}, {1, -1, 1}, 1.0};
+  se_frame f = {{0, 2, 1}, {1, -1, 1}, 1.0, {0, 0, 0}};
   return f;
 }
 
@@ -17,7 +17,7 @@ sh_vec3 se_frame_dir(const se_frame *f, sh_vec3 d) {
 }
 
 sh_vec3 se_frame_point(const se_frame *f, sh_vec3 p) {
-  return sh_scale(se_frame_dir(f, p), f->scale);
+  return sh_scale(se_frame_dir(f, sh_sub(p, f->origin)), f->scale);
 }
 
 double se_frame_length(const se_frame *f, double length) {
@@ -29,5 +29,8 @@ sh_vec3 se_frame_per_length(const se_frame *f, sh_vec3 coefficient) {
 }
 
 double se_frame_matrix(const se_frame *f, const sh_mat4 *m, int row, int col) {
-  return f->sign[row] * f->scale * m->m[f->axis[row]][col];
+  int a = f->axis[row];
+  double v = m->m[a][col];
+  if (col == 3) v -= sh_vget(f->origin, a); /* the translation */
+  return f->sign[row] * f->scale * v;
 }

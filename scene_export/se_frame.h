@@ -4,10 +4,12 @@
  * names, for each of its axes, the scene axis it is and its sign, and how
  * many of its length units make one scene unit:
  * - POV-Ray: left-handed, Y up: (x, y, z) -> (x, y, -z), a mirror that
- *   POV-Ray's own left-handedness undoes; lengths times a power of ten
- *   that puts the scene's bounding sphere near 300 units (se_pov.c), so
- *   POV-Ray's fixed epsilons stay negligible; coefficients per unit length
- *   (sigma_s, sigma_a) divided by it.
+ *   POV-Ray's own left-handedness undoes; the centre of the scene's
+ *   bounds (lights, medium, shapes; not the camera) at the origin and
+ *   lengths times a power of ten that puts their bounding sphere near 300
+ *   units (se_pov.c), so POV-Ray's fixed epsilons stay negligible, unless
+ *   the camera would then be more than 1e6 units away; coefficients per
+ *   unit length (sigma_s, sigma_a) divided by it.
  * - Blender: right-handed, Z up: (x, y, z) -> (x, -z, y), a rotation about
  *   X, so nothing is mirrored; one scene unit is one metre.
  * - the normalised scene (--to json): the identity.
@@ -26,12 +28,16 @@ typedef struct se_frame {
   int axis[3];     /* target axis i is scene axis axis[i] ... */
   double sign[3];  /* ... times sign[i] */
   double scale;    /* target length units per scene unit */
+  sh_vec3 origin;  /* the scene point at the target's origin */
 } se_frame;
 
-se_frame se_frame_pov(double scale);
+/* POV-Ray's frame, with the scene's point `origin` at POV-Ray's origin
+ * (a scene far from its origin keeps its digits in the printed numbers
+ * and against POV-Ray's absolute tolerances). */
+se_frame se_frame_pov(double scale, sh_vec3 origin);
 se_frame se_frame_blender(void);
 
-/* A point: axes mapped, scaled. */
+/* A point: moved by -origin, axes mapped, scaled. */
 sh_vec3 se_frame_point(const se_frame *f, sh_vec3 p);
 /* A direction (or a vector that is not a length): axes mapped only. */
 sh_vec3 se_frame_dir(const se_frame *f, sh_vec3 d);

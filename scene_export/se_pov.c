@@ -91,11 +91,13 @@ static void header(pov *p, const char *name) {
   se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
                 name, name);
   se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel centre.\n");
-  se_buf_puts(b, "// Coordinates: the scene's, with z negated (POV-Ray is left-handed) and\n");
-  se_buf_printf(b, "// lengths multiplied by %g (coefficients per unit length divided by it,\n",
+  se_buf_puts(b, "// Coordinates: the scene's, moved so that ");
+  components(b, p->center);
+  se_buf_puts(b, " is at the origin,\n// with z negated (POV-Ray is left-handed) and ");
+  se_buf_printf(b, "lengths multiplied by %g\n// (coefficients per unit length divided by it, "
+                   "intensities multiplied by its\n// square), so POV-Ray's fixed tolerances of "
+                   "1e-3 units are negligible.\n",
                 p->scale);
-  se_buf_puts(b, "// intensities multiplied by its square), so POV-Ray's fixed tolerances of\n");
-  se_buf_puts(b, "// 1e-3 units are negligible.\n");
   se_notes_comment(p->notes, b, "// ");
   se_buf_puts(b, "\n#version 3.7;\n\n");
 }
@@ -352,12 +354,13 @@ static void material(pov *p, int i) {
   se_buf_puts(b, "#end\n\n");
 }
 
-static void mesh2(pov *p, const sh_mesh *m) {
+/* A mesh whose object-space positions are already (q - oo) * k (shape). */
+static void mesh2(pov *p, const sh_mesh *m, double k) {
   se_buf *b = p->b;
   se_buf_printf(b, "mesh2 {\n  vertex_vectors { %d", m->nverts);
   for (int v = 0; v < m->nverts; v++) {
     const float *q = m->positions + 3 * v;
-    se_buf_printf(b, ",\n    <%.9g, %.9g, %.9g>", q[0], q[1], q[2]);
+    se_buf_printf(b, ",\n    <%.9g, %.9g, %.9g>", q[0] * k, q[1] * k, q[2] * k);
   }
   se_buf_printf(b, "\n  }\n  face_indices { %d", m->ntris);
   for (int t = 0; t < m->ntris; t++) {
@@ -373,32 +376,40 @@ static sh_status shape(pov *p, int i, sh_error *err) {
   static const char *names[] = {"mesh", "sphere", "box", "cylinder", "quad",
                                 "heightfield"};
   se_buf_printf(b, "// shapes[%d]: %s\n", i, names[s->type]);
+  /* The object space too is written moved and scaled, (q - oo) k with oo
+   * the frame's origin in object space, and the matrix undoes it: POV-Ray's
+   * tolerances apply in object space as well (a quad 4e-9 across written
+   * as is and scaled by its matrix came out 14% off). */
+  double k = p->scale;
+  sh_vec3 oo = sh_xform_point(&s->inv, p->center);
+#define SE__Q(v) ((v).x - oo.x) * k, ((v).y - oo.y) * k, ((v).z - oo.z) * k
   switch (s->type) {
   case SH_SHAPE_SPHERE:
-    se_buf_printf(b, "sphere {\n  <%.17g, %.17g, %.17g>, %.17g\n", s->center.x,
-                  s->center.y, s->center.z, s->radius);
+    se_buf_printf(b, "sphere {\n  <%.17g, %.17g, %.17g>, %.17g\n", SE__Q(s->center),
+                  s->radius * k);
     break;
   case SH_SHAPE_BOX:
     se_buf_printf(b, "box {\n  <%.17g, %.17g, %.17g>, <%.17g, %.17g, %.17g>\n",
-                  s->bmin.x, s->bmin.y, s->bmin.z, s->bmax.x, s->bmax.y,
-                  s->bmax.z);
+                  SE__Q(s->bmin), SE__Q(s->bmax));
     break;
   case SH_SHAPE_CYLINDER:
     se_buf_printf(b, "cylinder {\n  <%.17g, %.17g, %.17g>, <%.17g, %.17g, %.17g>, %.17g%s\n",
-                  s->base.x, s->base.y, s->base.z, s->top.x, s->top.y, s->top.z,
-                  s->radius, s->caps ? "" : " open");
+                  SE__Q(s->base), SE__Q(s->top), s->radius * k, s->caps ? "" : " open");
     break;
   default: {
     sh_mesh m = {0};
-    sh_status st = sh_mesh_tessellate(s, 1.0, &m, err);
+    sh_status st = sh_mesh_tessellate_about(s, 1.0, oo, &m, err);
     if (st != SH_OK) return st;
-    mesh2(p, &m);
+    mesh2(p, &m, k);
     sh_mesh_free(&m);
     break;
   }
   }
+#undef SE__Q
   se_buf_printf(b, "  SE_Material%d()\n  hollow\n  ", s->material);
-  matrix(p, &s->xform);
+  sh_mat4 undo = sh_mat4_mul(sh_mat4_translate(oo), sh_mat4_scale(sh_v3s(1.0 / k)));
+  sh_mat4 xf = sh_mat4_mul(s->xform, undo);
+  matrix(p, &xf);
   se_buf_puts(b, "\n}\n\n");
   return SH_OK;
 }
@@ -463,6 +474,37 @@ static void ini(se_buf *b, const char *name, const sh_scene *s) {
   se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
 }
 
+/* POV-Ray's frame, from what the image needs: the scene's content (lights,
+ * medium, shapes; not the camera, which may be far away) centred at the
+ * origin and scaled by a power of ten to about 300 units, against
+ * POV-Ray's absolute tolerances (1e-3 units for intersections, and the
+ * light's fade distance and the sphere around a light in the medium, which
+ * follow the radius). A camera 5000 units from a scene 3.5 across put the
+ * scene in 0.4 units: 71% off, the sphere around the light covering it
+ * all. Rays must also stay well inside POV-Ray's largest distance (1e7):
+ * the camera is kept within 1e6 units, which lowers the scale when the
+ * camera is more than about 3000 radii away; then the tolerances are no
+ * longer negligible, and a note says so. */
+static void choose_frame(pov *p) {
+  const sh_scene *s = p->scene;
+  sh_vec3 lo, hi;
+  sh_scene_bounds(s, &lo, &hi);
+  p->center = sh_scale(sh_add(lo, hi), 0.5);
+  p->radius = 0.5 * sh_length(sh_sub(hi, lo));
+  double reach = sh_length(sh_sub(s->camera.position, p->center));
+  if (!(p->radius > 0)) p->radius = reach > 0 ? reach : 1.0;
+  double scale = pow(10.0, round(log10(300.0 / p->radius)));
+  if (reach * scale > 1e6) scale = pow(10.0, floor(log10(1e6 / reach)));
+  if (p->radius * scale < 3.0)
+    se_note(p->notes,
+            "the camera is %g scene radii away: to keep it within POV-Ray's "
+            "reach the scene is %g units across, where POV-Ray's tolerances of "
+            "1e-3 units are no longer negligible.",
+            reach / p->radius, 2.0 * p->radius * scale);
+  p->scale = scale;
+  p->frame = se_frame_pov(scale, p->center);
+}
+
 sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
                        const char *pov_path, se_output *out, se_notes *notes,
                        sh_error *err) {
@@ -488,9 +530,7 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
   p.opt = opt;
   p.notes = notes;
   p.name = name;
-  se_bounding_sphere(scene, &p.center, &p.radius);
-  p.scale = pow(10.0, round(log10(300.0 / p.radius)));
-  p.frame = se_frame_pov(p.scale);
+  choose_frame(&p);
   p.pov_radius = se_frame_length(&p.frame, p.radius);
   p.sigma_t = scene->medium.present
                   ? se_frame_per_length(&p.frame, scene->medium.sigma_t)
