@@ -79,6 +79,18 @@ def _sig(x, digits):
     return "{:,.{}f}".format(x, decimals)
 
 
+def fmt_number(x):
+    """A quantity (radiance) for people: 3 significant digits in fixed
+    notation ("0.0725", "21.1", "1,230"), never an exponent."""
+    if x is None:
+        return "–"
+    if x == 0:
+        return "0"
+    if abs(x) < 1e-6:
+        return "< 0.000001"
+    return ("-" if x < 0 else "") + _sig(abs(x), 3)
+
+
 def fmt_seconds(t):
     """A time for people: 3 significant digits, in ms below a second, s
     below ten minutes, then minutes and hours ("12.3 ms", "1.50 s",

@@ -13,7 +13,7 @@ import html
 import os
 from pathlib import Path
 
-from .metrics import fmt_percent, fmt_seconds
+from .metrics import fmt_number, fmt_percent, fmt_seconds
 from .verdicts import text as verdict_text
 
 THRESHOLDS = (0.01, 0.02, 0.05)
@@ -52,7 +52,9 @@ def _rel(path, base):
 def _num(v, fmt):
     """A number for tables; "n/a" when the comparison gave none (NaN or
     infinity in the image, which JSON writes as null)."""
-    return fmt % v if v is not None else "n/a"
+    if v is None:
+        return "n/a"
+    return fmt(v) if callable(fmt) else fmt % v
 
 
 def _time_of(run):
@@ -283,7 +285,7 @@ def _scene_section(s, results, base):
                        else ("<td></td>" if masked else ""),
                        _e(fmt_percent(m["mean_rel"])),
                        "%.1f dB" % m["psnr"] if m.get("psnr") is not None else "identical",
-                       _num(m.get("max_abs"), "%.3g"), _num(m.get("scale"), "%.4f"),
+                       _num(m.get("max_abs"), fmt_number), _num(m.get("scale"), "%.4f"),
                        '<span class="fail">%d</span>' % m["bad_values"] if m["bad_values"] else "0",
                        _thumb(run.get("png"), base, run.get("diff_png")),
                        _thumb(run.get("diff_png"), base)))
@@ -494,7 +496,7 @@ def summary_markdown(results):
                 fmt_seconds(run["warm_seconds"]) if run.get("warm_seconds") is not None else "",
                 fmt_percent(mm["rel_rms"]), fmt_percent(masked["rel_rms"]) if masked else "",
                 "%.1f dB" % mm["psnr"] if mm.get("psnr") is not None else "identical",
-                _num(mm.get("max_abs"), "%.3g"), _num(mm.get("scale"), "%.3f")))
+                _num(mm.get("max_abs"), fmt_number), _num(mm.get("scale"), "%.3f")))
         out.append("")
     hc = results.get("hard_cases")
     if hc:

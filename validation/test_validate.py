@@ -17,7 +17,7 @@ from . import renderers, report, slurm
 from .hard import bounds as hard_bounds
 from .hard import cases as hard_cases
 from .hard import runner as hard_runner
-from .metrics import fmt_percent, fmt_seconds, pareto_front, time_to_reach
+from .metrics import fmt_number, fmt_percent, fmt_seconds, pareto_front, time_to_reach
 from .progress import ProgressExecutor, fmt_left
 from .runs import Run, RunCache, RunFailed, execute, run_key
 from .scenes import light_mask, prepare_data, project, referenced_files, scaled_size
@@ -64,6 +64,9 @@ class MetricsTest(unittest.TestCase):
         self.assertEqual(fmt_seconds(0.00012), "120 µs")
         self.assertEqual(fmt_seconds(150.0), "150 s")
         self.assertEqual(fmt_seconds(1230.0), "20.5 min")
+        self.assertEqual(fmt_number(0.0725), "0.0725")
+        self.assertEqual(fmt_number(1234.5), "1,230")
+        self.assertEqual(fmt_number(2.1e-5), "0.0000210")
         for v in (1e-9, 3e-5, 0.5, 2.0, 1e3, 1e5, 1e40):
             self.assertNotIn("e+", fmt_percent(v) + fmt_seconds(v))
             self.assertNotIn("e-", fmt_percent(v) + fmt_seconds(v))
