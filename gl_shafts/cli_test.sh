@@ -54,15 +54,24 @@ check "good render" 0 $?
 for f in a.exr a.png a.json; do
   [ -s "$dir/$f" ] || { echo "FAIL: $f not written"; fail=1; }
 done
-for key in seconds shadow_seconds surface_seconds lattice_seconds plane_seconds \
+for key in seconds shadow_seconds surface_seconds plane_seconds \
            readback_seconds setup_seconds planes fragments fragments_rasterized \
-           lattice_points shadow_maps lights_swept renderer backend vendor \
-           programs_compiled programs_cached; do
+           shadow_maps lights_swept renderer backend vendor \
+           programs_compiled programs_cached sub_angle_deg; do
   grep -q "\"$key\"" "$dir/a.json" || { echo "FAIL: stats key $key"; fail=1; }
+done
+# Nothing that does not apply: no lattice with xi exact, no light maps'
+# settings without a light map, no directional light's.
+for key in lattice_u lattice_v lattice_seconds lattice_points light_map_res \
+           sub_texels planes_directional shadow_map_res_directional; do
+  grep -q "\"$key\"" "$dir/a.json" && { echo "FAIL: stats key $key does not apply"; fail=1; }
 done
 # The scene's render keys are the defaults...
 grep -q '"planes_per_light": 7' "$dir/a.json" || { echo "FAIL: render.planes not used"; fail=1; }
-grep -q '"lattice_v": 4' "$dir/a.json" || { echo "FAIL: render.lattice not used"; fail=1; }
+"$tool" "$dir/good.json" -o "$dir/c.exr" --stats "$dir/c.json" -q --xi lattice
+for key in '"lattice_v": 4' '"lattice_seconds"' '"lattice_points"'; do
+  grep -q "$key" "$dir/c.json" || { echo "FAIL: xi lattice: $key"; fail=1; }
+done
 grep -q '"xi": "exact"' "$dir/a.json" || { echo "FAIL: render.xi not used"; fail=1; }
 grep -q '"jitter": 1' "$dir/a.json" || { echo "FAIL: render.jitter not used"; fail=1; }
 # ...that options override.
@@ -70,7 +79,7 @@ grep -q '"jitter": 1' "$dir/a.json" || { echo "FAIL: render.jitter not used"; fa
   --lattice 5 6 --xi lattice --no-jitter --shadow-map-res 64 --light-map-res 8
 check "options" 0 $?
 for kv in '"planes_per_light": 9' '"lattice_u": 5' '"lattice_v": 6' '"xi": "lattice"' \
-          '"jitter": 0' '"shadow_map_res": 64' '"light_map_res": 8'; do
+          '"jitter": 0' '"shadow_map_res": 64'; do
   grep -q "$kv" "$dir/b.json" || { echo "FAIL: option not applied: $kv"; fail=1; }
 done
 # --backend NAME is the backend used; without it (auto), the backend the

@@ -87,9 +87,15 @@ static void put_settings(sh_stats *s, const sh_scene *scene,
   sh_stats_num(s, "width", win.x1 - win.x0);
   sh_stats_num(s, "height", win.y1 - win.y0);
   sh_stats_crop(s, &o->crop);
-  int kinds[2] = {0, 0}; /* local, directional lights present */
-  for (int i = 0; i < scene->nlights; i++)
+  /* Only what applies: a kind's planes and maps where the scene has a
+   * light of that kind, the lattice with xi on it, the light maps'
+   * resolution and sub-samples where a light has a map, the angular
+   * sub-samples where there is a point or spot light. */
+  int kinds[2] = {0, 0}, maps = 0; /* local, directional lights present */
+  for (int i = 0; i < scene->nlights; i++) {
     kinds[scene->lights[i].type == SH_LIGHT_DIRECTIONAL] = 1;
+    maps |= scene->lights[i].has_map;
+  }
   if (o->planes) sh_stats_num(s, "planes_per_light", o->planes);
   if (o->shadow_map_res) sh_stats_num(s, "shadow_map_res", o->shadow_map_res);
   if (kinds[0]) {
@@ -103,13 +109,17 @@ static void put_settings(sh_stats *s, const sh_scene *scene,
     sh_stats_num(s, "shadow_map_res_directional",
                  gs_light_shadow_map_res(o, SH_LIGHT_DIRECTIONAL));
   }
-  sh_stats_num(s, "lattice_u", o->lattice_u);
-  sh_stats_num(s, "lattice_v", o->lattice_v);
-  sh_stats_num(s, "light_map_res", o->light_map_res);
   sh_stats_str(s, "xi", gs_option_name("xi", o->xi));
+  if (o->xi == GS_XI_LATTICE) {
+    sh_stats_num(s, "lattice_u", o->lattice_u);
+    sh_stats_num(s, "lattice_v", o->lattice_v);
+  }
   sh_stats_num(s, "jitter", o->jitter);
-  sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
-  sh_stats_num(s, "sub_texels", o->sub_texels);
+  if (kinds[0]) sh_stats_num(s, "sub_angle_deg", o->sub_angle_deg);
+  if (maps) {
+    sh_stats_num(s, "light_map_res", o->light_map_res);
+    sh_stats_num(s, "sub_texels", o->sub_texels);
+  }
   if (st) sh_stats_str(s, "backend", st->backend);
 }
 
