@@ -44,6 +44,14 @@ basic_scene "$dir/scheme.json" 16 12 "$POINT_LIGHT" "" ', "render": {"scheme": "
 "$tool" "$dir/scheme.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "render.scheme both" 2 $?
 grep -q "scheme.json:9:[0-9]*: render.scheme: unknown value 'both'; expected one of: straight, refract-trace, refract-both" "$dir/err" \
   || { echo "FAIL: render.scheme message: $(cat "$dir/err")"; fail=1; }
+# Without a medium there are no medium samples and no noise to estimate;
+# the caustic pass's keys belong to refract-both.
+grep -v '"medium"\|"bounds"' "$dir/good.json" >"$dir/dry.json"
+"$tool" "$dir/dry.json" -o "$dir/dry.exr" --mode lmm --stats "$dir/dry.json.stats" -q; check "no medium" 0 $?
+for key in medium_samples noise_rel_rms_estimate volume_lookups caustic_seconds; do
+  grep -q "\"$key\"" "$dir/dry.json.stats" && { echo "FAIL: stats key $key does not apply"; fail=1; }
+done
+grep -q '"mesh_step"' "$dir/dry.json.stats" || { echo "FAIL: lmm stats without a medium"; fail=1; }
 # A crop is the same pixels as the whole image's, to the bit.
 "$tool" "$dir/good.json" -o "$dir/crop.exr" --spp 4 --crop 3 2 13 9 -q; check "--crop render" 0 $?
 oiiotool "$dir/a.exr" --cut 10x7+3+2 -o "$dir/cut.exr"

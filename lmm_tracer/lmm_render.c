@@ -184,6 +184,7 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
     stats->spp = ro.spp;
     stats->max_depth = ro.max_depth;
     stats->seed = ro.seed;
+    stats->medium = scene->medium.present;
     stats->trace = rs;
     if (method) {
       stats->has_lmm = 1;
@@ -222,8 +223,11 @@ size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
   sh__json_num(o, "camera_rays", (double)t->camera_rays);
   sh__json_num(o, "closest_rays", (double)t->closest_rays);
   sh__json_num(o, "occlusion_rays", (double)t->occlusion_rays);
-  sh__json_num(o, "medium_samples", (double)t->medium_samples);
-  if (t->noise_pixels > 0) {
+  /* Only what applies: without a medium the tracer draws no random number
+   * (no noise to estimate); the volume lookups and the caustic pass belong
+   * to a medium and to refract-both. */
+  if (s->medium) sh__json_num(o, "medium_samples", (double)t->medium_samples);
+  if (s->medium && t->noise_pixels > 0) {
     sh__json_num(o, "noise_rel_rms_estimate", t->noise_rel_rms);
     sh__json_num(o, "noise_pixels", (double)t->noise_pixels);
   }
@@ -243,9 +247,11 @@ size_t lmm_render_stats_json(const lmm_render_stats *s, char *buf,
     sh__json_num(o, "shaded_points", (double)l->shaded_points);
     sh__json_num(o, "empty_sets", (double)l->empty_sets);
     sh__json_num(o, "candidate_rays", (double)l->candidate_rays);
-    sh__json_num(o, "volume_lookups", (double)l->volume_lookups);
-    sh__json_num(o, "caustic_points", (double)l->caustic_points);
-    sh__json_num(o, "caustic_seconds", l->build_seconds);
+    if (s->medium) sh__json_num(o, "volume_lookups", (double)l->volume_lookups);
+    if (s->scheme == LMM_SCHEME_REFRACT_BOTH) {
+      sh__json_num(o, "caustic_points", (double)l->caustic_points);
+      sh__json_num(o, "caustic_seconds", l->build_seconds);
+    }
   }
   return sh__json_dump_to(o, buf, size);
 }

@@ -69,6 +69,8 @@ typedef struct lmm_render_stats {
   lmm_scheme scheme; /* the one used (never DEFAULT) */
   int width, height, spp, max_depth; /* width, height: the image rendered
                                         (the crop's) */
+  int medium;            /* the scene has a medium (medium samples and the
+                            noise estimate apply) */
   uint64_t seed;
   double seconds;        /* the whole call: set-up and render */
   /* The tracing's own (sh_reference.h): its seconds, threads, ray and
