@@ -163,6 +163,21 @@ void *sh__parse_objects(sh__parser *p, json_t *root, const char *key,
   return base;
 }
 
+/* The lights, then the shapes (sh__parse_light and sh__parse_shape read one
+ * element each). */
+static sh_status parse_lights_and_shapes(sh__parser *p, json_t *root) {
+  sh_scene *s = p->scene;
+  sh_status st;
+  s->lights = sh__parse_objects(p, root, "lights", "an object (a light)",
+                                sizeof *s->lights, sh__parse_light,
+                                &s->nlights, &st);
+  if (st == SH_OK)
+    s->shapes = sh__parse_objects(p, root, "shapes", "an object (a shape)",
+                                  sizeof *s->shapes, sh__parse_shape,
+                                  &s->nshapes, &st);
+  return st;
+}
+
 static sh_status parse_materials(sh__parser *p, json_t *root) {
   sh__pctx *c = &p->c;
   sh_scene *s = p->scene;
@@ -332,7 +347,7 @@ static sh_status parse_root(sh__parser *p, json_t *root) {
                      &s->background)) ||
       (st = sh__vec3(c, root, "ambient", 0, sh_v3s(0), sh__quantity, &s->ambient)) ||
       (st = sh__parse_medium(p, root)) || (st = parse_materials(p, root)) ||
-      (st = sh__parse_lights(p, root)) || (st = sh__parse_shapes(p, root)) ||
+      (st = parse_lights_and_shapes(p, root)) ||
       (st = parse_render(p, root)))
     return st;
   return SH_OK;

@@ -68,10 +68,11 @@ void *sh__parse_objects(sh__parser *p, json_t *root, const char *key,
                                               void *item),
                         int *count, sh_status *st);
 
-/* Read the "lights" and "shapes" arrays of the root object. Materials and
+/* Read one element of the "lights" and of the "shapes" array into item (an
+ * sh_light, an sh_shape), as sh__parse_objects calls them. Materials and
  * the camera must have been read already. */
-sh_status sh__parse_lights(sh__parser *p, json_t *root);
-sh_status sh__parse_shapes(sh__parser *p, json_t *root);
+sh_status sh__parse_light(sh__parser *p, json_t *o, void *item);
+sh_status sh__parse_shape(sh__parser *p, json_t *o, void *item);
 
 /* Read the "camera" (required) and "medium" (optional) members of `root`
  * into p->scene. A scene patch (sh_scene_update) reads its members with

@@ -112,8 +112,7 @@ static sh_status parse_light_map(sh__parser *p, json_t *o, sh_light *l,
   return SH_OK;
 }
 
-/* One element of the "lights" array (sh__parse_objects). */
-static sh_status parse_light(sh__parser *p, json_t *o, void *item) {
+sh_status sh__parse_light(sh__parser *p, json_t *o, void *item) {
   sh_light *l = item;
   static const char *const *const type_keys[] = {point_keys, spot_keys,
                                                  directional_keys};
@@ -155,12 +154,4 @@ static sh_status parse_light(sh__parser *p, json_t *o, void *item) {
   if (sh_light_prepare(l, p->scene->camera.up, has_up, &e) != SH_OK)
     return sh__fail_from(c, l->has_map ? "light_map" : NULL, &e, "");
   return SH_OK;
-}
-
-sh_status sh__parse_lights(sh__parser *p, json_t *root) {
-  sh_status st;
-  sh_scene *s = p->scene;
-  s->lights = sh__parse_objects(p, root, "lights", "an object (a light)",
-                             sizeof *s->lights, parse_light, &s->nlights, &st);
-  return st;
 }

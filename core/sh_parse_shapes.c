@@ -221,8 +221,7 @@ static sh_status parse_heightfield(sh__parser *p, json_t *o, sh_shape *sh) {
   return st;
 }
 
-/* One element of the "shapes" array (sh__parse_objects). */
-static sh_status parse_shape(sh__parser *p, json_t *o, void *item) {
+sh_status sh__parse_shape(sh__parser *p, json_t *o, void *item) {
   sh_shape *sh = item;
   static const char *const *const type_keys[] = {mesh_keys, sphere_keys,
                                                  box_keys,  cylinder_keys,
@@ -270,12 +269,4 @@ static sh_status parse_shape(sh__parser *p, json_t *o, void *item) {
   case SH_SHAPE_HEIGHTFIELD: return parse_heightfield(p, o, sh);
   }
   return SH_OK;
-}
-
-sh_status sh__parse_shapes(sh__parser *p, json_t *root) {
-  sh_status st;
-  sh_scene *s = p->scene;
-  s->shapes = sh__parse_objects(p, root, "shapes", "an object (a shape)",
-                             sizeof *s->shapes, parse_shape, &s->nshapes, &st);
-  return st;
 }

@@ -67,7 +67,11 @@ static sh_status read_lights(sh__parser *p, json_t *root, const sh_scene *s) {
                        "keeps the number of lights; parse the scene again "
                        "to add or remove one",
                        (int)json_array_size(a), s->nlights);
-  if ((st = sh__parse_lights(p, root))) return st;
+  sh_scene *t = p->scene;
+  t->lights = sh__parse_objects(p, root, "lights", "an object (a light)",
+                                sizeof *t->lights, sh__parse_light,
+                                &t->nlights, &st);
+  if (st) return st;
   for (int i = 0; i < s->nlights; i++)
     if (p->scene->lights[i].type != s->lights[i].type) {
       static const char *const kind[] = {"point", "spot", "directional"};
