@@ -65,7 +65,7 @@ LIT = 0.01
 # for, and the project's renderers for their speed beside them. POV-Ray
 # represents the canonical scenes exactly (docs/scene_export.md), so its
 # twin runs would repeat its scene's.
-TWIN_RENDERERS = ("lmm_tracer", "gl_shafts", "cycles", "eevee")
+TWIN_RENDERERS = ("lmm_tracer", "gl_shafts", "cycles", "eevee", "addon_sweep", "addon_tracer")
 
 
 def slug(text):

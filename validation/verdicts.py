@@ -91,13 +91,13 @@ def features(data):
 # backed by a measurement in docs/validation.md ("Bias or noise"). The
 # first matching entries name a row's cause.
 CAUSES = [
-    (("cycles", "eevee"), "phase:nishita_hazy",
+    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:nishita_hazy",
      "Nishita hazy phase exported as one HG lobe, g 0.4"),
-    (("cycles", "eevee"), "phase:nishita_murky",
+    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:nishita_murky",
      "Nishita murky phase exported as one HG lobe, g 0.567"),
-    (("cycles", "eevee"), "phase:rayleigh",
+    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:rayleigh",
      "Rayleigh phase exported as two HG lobes"),
-    (("cycles", "eevee"), "phong", "Phong highlights exported as Glossy"),
+    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phong", "Phong highlights exported as Glossy"),
     (("eevee",), "medium", "EEVEE's froxel volumetrics"),
     (("gl_shafts", "addon_sweep"), "reflect",
      "reflecting and transmitting materials drawn opaque"),
