@@ -6,11 +6,11 @@ the ones the run cache lacks on the cluster:
 
 1. a probe job checks, on a node, that the cache directory and the source
    and build trees are there at the same paths and that the renderers are
-   the same build (slurm_task.py --probe); if not, the sweep stops with
+   the same build (validation.slurm_task --probe); if not, the sweep stops with
    the probe's message before anything else is submitted;
 2. the runs are grouped by renderer and by their time and memory limits
    (Adapter.limits: the renderer's cost model and the image size), and each
-   group is one `sbatch --array=0-(n-1)%P` of slurm_task.py over a
+   group is one `sbatch --array=0-(n-1)%P` of validation.slurm_task over a
    manifest, its log per task in CACHE/slurm/SWEEP/logs/JOB_TASK.log;
 3. the executor polls squeue until the arrays have left the queue; a task
    whose run has no result in the cache failed on the Slurm side

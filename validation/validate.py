@@ -473,11 +473,11 @@ def main(argv=None):
     say("")
     for s in results["scenes"]:
         if s.get("error"):
-            say("%-18s %s" % (s["name"], s["error"]))
+            say("%-24s %s" % (s["name"], s["error"]))
             continue
         for name, tt in s["time_to"].items():
             best = tt.get("best")
-            say("%-18s %-23s least error %-8s  to 5%%: %-9s to 2%%: %-9s to 1%%: %s" % (
+            say("%-24s %-23s least error %-8s  to 5%%: %-9s to 2%%: %-9s to 1%%: %s" % (
                 s["name"], report.series_label(val.labels, name, s["time_to"]),
                 fmt_percent(best[0]) if best else "-",
                 fmt_seconds(tt.get("0.05")), fmt_seconds(tt.get("0.02")), fmt_seconds(tt.get("0.01"))))
