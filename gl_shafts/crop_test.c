@@ -4,13 +4,15 @@
  * pixel (the lit volumes are clipped to the window's frustum, which moves
  * the planes' depths; a directional light's shadow map is fitted to it;
  * the lattice covers the light's part of the window). The window that is
- * the whole image is the whole image to the bit, and a crop outside the
- * image is refused with its key. */
+ * the whole image is the whole image to the bit, a kept renderer draws the
+ * crop as gs_render does, and a crop outside the image is refused with its
+ * key, also when a sync makes the image smaller. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sh_test.h"
+#include "shafts.h"
 #include "test_util.h"
 
 /* A spot with a gobo and a shadow-casting ball, a directional light
@@ -99,13 +101,39 @@ int main(void) {
   lj.jitter = 1;
   check_crop(s, lj, (sh_crop){30, 20, 75, 61}, "crop_lattice_jitter", 0.01);
 
+  /* A kept renderer draws the crop into a buffer of the crop's size, as
+   * gs_render does; an image made smaller under it than its crop is
+   * refused at the sync. */
+  gs_options kept = o;
+  kept.crop = (sh_crop){10, 12, 50, 40};
+  gs_renderer *r = NULL;
+  sh_error err;
+  SH_CHECK(gs_renderer_create(s, &kept, &r, &err) == SH_OK);
+  sh_image drawn = {0}, rendered = {0};
+  if (r && sh_image_alloc(&drawn, 40, 28, NULL) == SH_OK &&
+      tu_gl(s, &kept, &rendered) == SH_OK) {
+    SH_CHECK(gs_renderer_draw(r, drawn.rgb, NULL, &err) == SH_OK);
+    SH_CHECK(tu_equal_bits("crop_kept_renderer", &drawn, &rendered));
+    s->camera.width = 48;
+    s->camera.height = 36;
+    int refused = gs_renderer_sync(r, SH_CHANGED_SIZE | SH_CHANGED_CAMERA,
+                                   &err) == SH_ERR_ARG &&
+                  !strcmp(err.path, "crop") && strstr(err.message, "x1 = 50");
+    SH_CHECK(refused);
+    if (!refused) fprintf(stderr, "sync: %s\n", err.message);
+    s->camera.width = 96;
+    s->camera.height = 72;
+  }
+  sh_image_free(&drawn);
+  sh_image_free(&rendered);
+  gs_renderer_free(r);
+
   /* Outside the image: refused before any GL work, with the key. */
   static const sh_crop bad[] = {{0, 0, 97, 72}, {0, 0, 96, 73}, {5, 5, 5, 9}};
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     gs_options b = o;
     b.crop = bad[i];
     sh_image img = {0};
-    sh_error err;
     int ok = gs_render(s, &b, &img, NULL, &err) == SH_ERR_ARG &&
              !strcmp(err.path, "crop") && img.rgb == NULL;
     SH_CHECK(ok);
