@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Checks that README.md's synopses list every option of every tool: each
+"""Checks that a page's synopses list every option of every tool: each
 option a tool's --help lists (a line starting with "-x, --name" or
-"--name") stands, in its long or its short form, in a ```sh block of the
-README that names the tool.
+"--name", and the long options of its usage lines) stands, in its long or
+its short form, in a fenced code block of the page that names the tool.
 
-usage: readme_synopses.py README.md TOOL...
+usage: doc_synopses.py PAGE.md TOOL...
 
 Prints each missing option and exits 1 if there is one, else 0.
 """
@@ -33,8 +33,8 @@ def options(tool):
 
 
 def synopsis(readme, name):
-    """The README's ```sh blocks that name the tool, joined."""
-    blocks = re.findall(r"```sh\n(.*?)```", readme, re.S)
+    """The page's code blocks that name the tool, joined."""
+    blocks = re.findall(r"```[a-z]*\n(.*?)```", readme, re.S)
     return "\n".join(b for b in blocks if re.search(r"\b%s\b" % re.escape(name), b))
 
 
@@ -49,13 +49,13 @@ def main(argv):
         name = os.path.basename(tool)
         text = synopsis(readme, name)
         if not text:
-            print("FAIL: README.md has no synopsis of %s" % name)
+            print("FAIL: %s has no synopsis of %s" % (argv[1], name))
             missing += 1
             continue
         absent = sorted({long for short, long in options(tool)
                          if not (stands(long, text) or stands(short, text))})
         for long in absent:
-            print("FAIL: %s %s is not in README.md's synopsis" % (name, long))
+            print("FAIL: %s %s is not in %s's synopsis" % (name, long, argv[1]))
         print("%s: %s" % (name, "missing %d" % len(absent) if absent else "ok"))
         missing += len(absent)
     return 1 if missing else 0
