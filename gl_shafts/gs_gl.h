@@ -30,6 +30,8 @@
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLVIEWPORTPROC, Viewport)                                             \
+  X(PFNGLSCISSORPROC, Scissor)                                               \
+  X(PFNGLCOLORMASKPROC, ColorMask)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
   X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PFNGLCLIPCONTROLPROC, ClipControl)                                       \
@@ -137,6 +139,8 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glDepthFunc gs__gl_current->DepthFunc
 #define glDepthMask gs__gl_current->DepthMask
 #define glViewport gs__gl_current->Viewport
+#define glScissor gs__gl_current->Scissor
+#define glColorMask gs__gl_current->ColorMask
 #define glPolygonOffset gs__gl_current->PolygonOffset
 #define glCullFace gs__gl_current->CullFace
 #define glClipControl gs__gl_current->ClipControl

@@ -261,6 +261,32 @@ static int light_front(const sh_mat4 *m, sh_vec3 c, sh_vec3 fwd) {
   return (x[1] - x[0]) * (y[2] - y[0]) - (y[1] - y[0]) * (x[2] - x[0]) > 0;
 }
 
+/* The view-depth range and the screen rectangle (ndc x0, y0, x1, y1, within
+ * [-1, 1]; x0 > x1 if p is empty) of a polytope in the view frustum. */
+static void poly_bounds(const gs__poly *p, const gs__view *view, double *zmin,
+                        double *zmax, double rect[4]) {
+  *zmin = INFINITY;
+  *zmax = -INFINITY;
+  rect[0] = rect[1] = 1.0;
+  rect[2] = rect[3] = -1.0;
+  for (int f = 0; f < p->nfaces; f++)
+    for (int i = 0; i < p->face[f].n; i++) {
+      sh_vec3 q = p->face[f].v[i];
+      double z = gs__view_depth(view, q), x, y;
+      *zmin = fmin(*zmin, z);
+      *zmax = fmax(*zmax, z);
+      gs__view_ndc(view, q, &x, &y);
+      rect[0] = fmin(rect[0], x);
+      rect[1] = fmin(rect[1], y);
+      rect[2] = fmax(rect[2], x);
+      rect[3] = fmax(rect[3], y);
+    }
+  for (int k = 0; k < 2; k++) {
+    rect[k] = fmax(rect[k], -1.0);
+    rect[k + 2] = fmin(rect[k + 2], 1.0);
+  }
+}
+
 sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
                                int index, const gs__view *view,
                                const gs__geometry *geom, sh_error *err) {
@@ -285,26 +311,20 @@ sh_status gs__light_setup_init(gs__light_setup *ls, const sh_scene *scene,
     gs__view_frustum(view, fr);
     for (int i = 0; i < 5; i++) gs__poly_clip(ls->vol, fr[i]);
   }
-  ls->zmin = INFINITY;
-  ls->zmax = -INFINITY;
-  ls->rect[0] = ls->rect[1] = 1.0;
-  ls->rect[2] = ls->rect[3] = -1.0;
-  for (int f = 0; f < ls->vol->nfaces; f++)
-    for (int i = 0; i < ls->vol->face[f].n; i++) {
-      sh_vec3 p = ls->vol->face[f].v[i];
-      double z = gs__view_depth(view, p), x, y;
-      ls->zmin = fmin(ls->zmin, z);
-      ls->zmax = fmax(ls->zmax, z);
-      gs__view_ndc(view, p, &x, &y);
-      ls->rect[0] = fmin(ls->rect[0], x);
-      ls->rect[1] = fmin(ls->rect[1], y);
-      ls->rect[2] = fmax(ls->rect[2], x);
-      ls->rect[3] = fmax(ls->rect[3], y);
-    }
-  for (int k = 0; k < 2; k++) {
-    ls->rect[k] = fmax(ls->rect[k], -1.0);
-    ls->rect[k + 2] = fmin(ls->rect[k + 2], 1.0);
+  poly_bounds(ls->vol, view, &ls->zmin, &ls->zmax, ls->rect);
+  gs__poly *reach = malloc(sizeof *reach);
+  if (!reach) {
+    gs__light_setup_free(ls);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
+  gs__poly_box(reach, lo, hi);
+  for (int i = 0; i < ls->nregion; i++) gs__poly_clip(reach, ls->region[i]);
+  gs__halfspace frs[5];
+  gs__view_frustum(view, frs);
+  for (int i = 0; i < 5; i++) gs__poly_clip(reach, frs[i]);
+  double zr[2];
+  poly_bounds(reach, view, &zr[0], &zr[1], ls->surface_rect);
+  free(reach);
   if (ls->vol->nfaces && !(ls->zmax > ls->zmin)) ls->vol->nfaces = 0;
 
   int nomem = 0;

@@ -39,6 +39,10 @@ typedef struct gs__light_setup {
   gs__poly *vol;
   double zmin, zmax;   /* its view-depth range */
   double rect[4];      /* its screen bounds: ndc x0, y0, x1, y1 */
+  /* The screen bounds of the scene's bounds inside the region and the
+   * view frustum: the only pixels whose surfaces the light can reach
+   * (x0 > x1 if none). */
+  double surface_rect[4];
 
   /* The shadow map, and the shapes drawn into it (casts[i] = 1 if shape i
    * may shadow the lit volume or another shape). */

@@ -2,8 +2,12 @@
  * it (emission + ambient * diffuse + per light Lambert and Phong terms with
  * the light's transmittance and shadow-map visibility), attenuated by the
  * medium towards the eye, and the background, attenuated likewise, where no
- * surface is seen. One pass per light, added; the first also writes the
- * depth buffer and the view depth the sweep reads.
+ * surface is seen. One pass per light, added. The first, for the light
+ * whose surface_rect (gs_lightvol.h) is largest, also adds emission and
+ * ambient everywhere and writes the depth buffer and the view depth the
+ * sweep reads; each other light's pass is cut (scissored) to its
+ * surface_rect, the only pixels whose surfaces it can light (on the
+ * five-spot stage 0.42 to 0.54 of the screen each).
  *
  * Limitation: surfaces are not mirrors and are not see-through here; the
  * `reflect`, `transmit` and `ior` of materials are ignored (gs_render.h). */
