@@ -9,9 +9,10 @@ executor renders). Each rendering it starts is announced as
 
 The time left is each remaining run's estimate from its adapter's cost model
 (renderers.Adapter: start-up plus seconds per megapixel and unit of work),
-corrected by how long this machine has actually taken for the runs of the
-same renderer so far (for a renderer not seen yet, of all renderers).
-Runs the cache already holds take no time and are counted as done at once.
+corrected by how long the runs of the same renderer have actually taken
+(those rendered so far and those the cache holds, as they recorded it; for
+a renderer not seen yet, of all renderers). Runs the cache already holds
+take no time and are counted as done at once.
 """
 
 import time
@@ -43,16 +44,21 @@ class ProgressExecutor:
         self.name = inner.name
         self.todo = {}     # key -> estimate, runs the cache lacks
         self.done = set()  # keys finished in this validation or cached
+        self.spent = {}    # adapter name -> [seconds taken, seconds estimated]
         for r in planned:
             if r.key in self.todo or r.key in self.done:
                 continue
             cached = cache.load(r.key)
             if cached is not None and (cached.get("status") == "ok" or not retry_failed):
                 self.done.add(r.key)
+                # What the cached runs took calibrates the estimates too.
+                if cached.get("wall_seconds"):
+                    spent = self.spent.setdefault(r.adapter.name, [0.0, 0.0])
+                    spent[0] += cached["wall_seconds"]
+                    spent[1] += estimate(r)
             else:
                 self.todo[r.key] = (r.adapter.name, estimate(r))
         self.total = len(self.todo) + len(self.done)
-        self.spent = {}    # adapter name -> [seconds taken, seconds estimated]
 
     def __getattr__(self, name):
         # prefetch, info, failed, ...: the wrapped executor's.

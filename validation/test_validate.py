@@ -337,7 +337,8 @@ class ProgressTest(unittest.TestCase):
 
         class Cache:
             def load(self, key):
-                return {"status": "ok"} if key == "k0" else None
+                # A cached run that took half the cost model's 10 s.
+                return {"status": "ok", "wall_seconds": 5.0} if key == "k0" else None
 
         clock = [0.0]
 
@@ -351,11 +352,12 @@ class ProgressTest(unittest.TestCase):
 
         ex = ProgressExecutor(Inner(), Cache(), runs, clock=lambda: clock[0])
         self.assertEqual((ex.total, len(ex.done)), (3, 1))
-        self.assertEqual(ex.seconds_left(), 20.0)
+        # The cached run calibrates: two runs of 10 s guessed at 5 s each.
+        self.assertEqual(ex.seconds_left(), 10.0)
         said = []
         ex.run(runs[1], say=said.append)
-        self.assertEqual(said, ["[2/3 renderings, 20 s left] case1: rendering slow: x"])
-        # This machine took half the estimate: the last run is guessed at 5 s.
+        self.assertEqual(said, ["[2/3 renderings, 10 s left] case1: rendering slow: x"])
+        # This run took half the estimate too: the last one is guessed at 5 s.
         self.assertEqual(ex.seconds_left(), 5.0)
         self.assertEqual(fmt_left(3725), "1 h 02 min")
         self.assertEqual(fmt_left(200), "3 min 20 s")

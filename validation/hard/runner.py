@@ -39,6 +39,7 @@ from pathlib import Path
 
 from .. import renderers
 from ..metrics import CompareFailed, compare, fmt_percent, mask_image
+from ..progress import ProgressExecutor
 from ..runs import LocalExecutor, RunCache, plan_run
 from ..scenes import light_mask, prepare_data
 from .bounds import INVARIANCE_BOUNDS, bound_for, bounds_table, known_issue
@@ -336,8 +337,10 @@ def main(argv=None):
         cache = RunCache(args.cache or Path(tmp) / "cache")
         scratch = Path(tmp) / "scratch"
         scratch.mkdir()
-        results = run_suite(ctx, adapters, cache, scratch, retry_failed=args.retry_failed,
-                            say=lambda m: None, image_dir=args.images)
+        executor = ProgressExecutor(LocalExecutor(ctx, cache, args.retry_failed), cache,
+                                    planned_runs(ctx, adapters, cache), args.retry_failed)
+        results = run_suite(ctx, adapters, cache, scratch, say=lambda m: print(m, flush=True),
+                            image_dir=args.images, executor=executor)
     print_table(results)
     if args.json:
         Path(args.json).write_text(json.dumps(results, indent=1) + "\n")
