@@ -238,6 +238,11 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
     }
     return NULL;
   }
+  if (l->has_map)
+    se_note(&b->eevee,
+            "lights[%d]: EEVEE's shadow maps hold no colour: the light map's card "
+            "casts hashed grey shadows (sun_window: scale 0.82, docs/scene_export.md).",
+            i);
   /* The light map, or the profile (times the map) for Cycles and the plain
    * map for EEVEE: image files and cards. */
   int ok = 1;

@@ -1,8 +1,12 @@
 # EEVEE's volumetric settings for the validation sweep.
 #
-# scene_export's Blender script fixes EEVEE's volumetric quality (tile size,
-# samples); the validation sweeps it. Run this file before the exported
-# script, in the same Blender process:
+# scene_export's Blender script fixes EEVEE's volumetric quality at the
+# settings measured best (2 px tiles, 256 slices, 32 shadow samples, TAA 64
+# in final quality; docs/scene_export.md, EEVEE: 8 px tiles cost about 19
+# points of mean_rel on a point light); the validation sweeps it for its
+# speed-against-error curves, and scene_export/eevee_limits.py for the
+# figures. Run this file before the exported script, in the same Blender
+# process:
 #
 #   SHAFTS_EEVEE_SETTINGS='{"volumetric_tile_size": "8", "volumetric_samples": 32}' \
 #     xvfb-run -a blender -b -P validation/blender_eevee.py -P DIR/NAME.py -- ...
