@@ -58,7 +58,7 @@ MODES = {
     # warm_frames: gl_shafts' warm frame is the median of that many
     # in-process frames (gl_shafts_bench) after each command-line run.
     "quick": {"scale": 0.5, "ref_spp": 512, "hard": "lmm_tracer,gl_shafts", "warm_frames": 3},
-    "full": {"scale": 1.0, "ref_spp": 4096, "hard": "", "warm_frames": 5},
+    "full": {"scale": 1.0, "ref_spp": 4096, "hard": "", "warm_frames": 2},
 }
 LIT = 0.01
 # The renderers a twin (twins.py) is rendered with: the peers it is made
