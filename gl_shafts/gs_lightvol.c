@@ -232,7 +232,11 @@ static int shadow_ortho(gs__light_setup *ls, const sh_light *l,
   for (int i = 0; i < 8; i++)
     s0 = fmin(s0, sh_dot(w, sh_v3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y,
                                   i & 4 ? hi.z : lo.z)));
-  double pad = 1e-3 * fmax(x1 - x0, y1 - y0) + 1e-9;
+  /* Relative to the map's extent and position (an absolute 1e-9 was as
+   * large as a scene a billionth of a unit across). */
+  double pad = 1e-3 * fmax(x1 - x0, y1 - y0) +
+               1e-9 * (fabs(x0) + fabs(x1) + fabs(y0) + fabs(y1));
+  if (!(pad > 0)) pad = 1e-9;
   x0 -= pad, x1 += pad, y0 -= pad, y1 += pad, s0 -= pad, s1 += pad;
   sh_mat4 m = {{{0}}};
   sh_vec3 o = sh_v3s(0);

@@ -104,7 +104,9 @@ int gs__poly_clip(gs__poly *p, gs__halfspace h) {
     qsort(cap, (size_t)ncap, sizeof cap[0], by_angle);
     gs__face nf;
     nf.n = 0;
-    double tol = 1e-9 * (scale + 1.0);
+    /* Relative to the coordinates: an absolute part (it was + 1) merged
+     * every vertex of a scene a billionth of a unit across. */
+    double tol = 1e-9 * scale;
     for (int i = 0; i < ncap && nf.n < GS__POLY_MAX_FACE_VERTS; i++) {
       if (nf.n && sh_length(sh_sub(cap[i].p, nf.v[nf.n - 1])) <= tol) continue;
       nf.v[nf.n++] = cap[i].p;

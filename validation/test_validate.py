@@ -177,11 +177,28 @@ class HardCasesTest(unittest.TestCase):
             self.assertNotIn(case.name, names)
             names.add(case.name)
             for kind, other in case.invariance:
-                self.assertIn(kind, ("scale", "pixel", "plane"))
+                self.assertIn(kind, ("scale", "position", "distance", "pixel", "plane"))
+                self.assertIn(kind, hard_bounds.INVARIANCE_REASONS)
         for needed in ("point_light_in_view", "light_on_plane", "inside_spot_cone", "dense",
                        "thin", "planes_2000", "scale_1e-3", "scale_1e4", "murky_peak",
-                       "grazing_directional", "hard_spot", "light_behind_camera", "image_1x1"):
+                       "grazing_directional", "hard_spot", "light_behind_camera", "image_1x1",
+                       "scale_1e-9", "scale_1e9", "moved_1e6", "camera_500", "camera_5000"):
             self.assertIn(needed, names)
+
+    def test_moved_and_camera_at(self):
+        # moved() shifts every position and nothing else; camera_at() keeps
+        # the half height framed at the look-at point.
+        base = hard_cases.base_scene(8, 6)
+        m = hard_cases.moved(base, (1e6, -1e6, 1e6))
+        self.assertEqual(m["shapes"][1]["center"], [1e6 + 0.35, -1e6 + 2.4, 1e6 + 0.1])
+        self.assertEqual(m["medium"]["bounds"]["min"], [1e6 - 2, -1e6, 1e6 - 2])
+        self.assertEqual(m["lights"][0]["direction"], base["lights"][0]["direction"])
+        self.assertEqual(m["medium"]["sigma_s"], base["medium"]["sigma_s"])
+        c = base["camera"]
+        half = (c["position"][2] - c["look_at"][2]) * math.tan(math.radians(c["fov_y_deg"] / 2))
+        far = hard_cases.camera_at(5000.0)(8, 6)["camera"]
+        self.assertAlmostEqual(far["position"][2], c["look_at"][2] + 5000.0)
+        self.assertAlmostEqual(5000.0 * math.tan(math.radians(far["fov_y_deg"] / 2)), half)
 
     def test_dense_and_thin_optical_depths(self):
         cases = {c.name: c for c in hard_cases.CASES}

@@ -19,10 +19,17 @@ void main() {
   vec3 pa = a.xyz / a.w, pb = b.xyz / b.w;
   vec3 oc = (u_obj_inv * vec4(pa, 1.0)).xyz - u_center;
   vec3 od = (u_obj_inv * vec4(pb - pa, 0.0)).xyz;
-  float A = dot(od, od), B = dot(oc, od);
-  float disc = B * B - A * (dot(oc, oc) - u_radius * u_radius);
+  // Along the unit direction, and with the discriminant as r^2 - |f|^2, f
+  // the point nearest the centre: B^2 - A C, of the fourth power of the
+  // lengths, fell below single precision's least normal number in a scene
+  // a billionth of a unit across, and cancels for a sphere far away.
+  float len = length(od);
+  vec3 u = od / len;
+  float B = dot(oc, u);
+  vec3 f = oc - B * u;
+  float disc = u_radius * u_radius - dot(f, f);
   if (disc < 0.0) discard;
-  float t = (-B + sqrt(disc)) / A;
+  float t = (-B + sqrt(disc)) / len;
   vec4 c = u_mvp * vec4(pa + t * (pb - pa), 1.0);
   gl_FragDepth = c.z / c.w;
 #endif

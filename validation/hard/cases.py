@@ -100,6 +100,50 @@ class Case:
     reference_case: str = None
 
 
+def moved(scene, offset):
+    """The scene with every position moved by offset, which leaves the
+    image unchanged."""
+    out = copy.deepcopy(scene)
+
+    def add(p):
+        return [c + o for c, o in zip(p, offset)]
+    cam = out["camera"]
+    for k in ("position", "look_at"):
+        cam[k] = add(cam[k])
+    m = out.get("medium")
+    if m:
+        m["bounds"] = {k: add(v) for k, v in m["bounds"].items()}
+    for light in out.get("lights", []):
+        for k in ("position", "look_at"):
+            if k in light:
+                light[k] = add(light[k])
+        lm = light.get("light_map")
+        if lm and "origin" in lm:
+            lm["origin"] = add(lm["origin"])
+    for shape in out.get("shapes", []):
+        for k in ("corner", "center", "min", "max", "base", "top"):
+            if k in shape:
+                shape[k] = add(shape[k])
+        if "transform" in shape:
+            raise ValueError("moved() handles untransformed shapes only")
+    return out
+
+
+def camera_at(distance):
+    """A builder of the base scene seen from `distance` units away along
+    the same axis, with the field of view that keeps the framing at the
+    spot's axis (the perspective flattens as the camera recedes)."""
+    def build(w, h):
+        s = base_scene(w, h)
+        cam = s["camera"]
+        near = cam["position"][2] - cam["look_at"][2]
+        half = near * math.tan(math.radians(cam["fov_y_deg"] / 2))
+        cam["position"][2] = cam["look_at"][2] + distance
+        cam["fov_y_deg"] = math.degrees(2 * math.atan(half / distance))
+        return s
+    return build
+
+
 def _point_in_view(w, h):
     s = base_scene(w, h)
     s["lights"] = [{"type": "point", "position": [0.0, 1.8, 0.0], "intensity": [6.0, 6.0, 6.0]}]
@@ -244,6 +288,20 @@ CASES = [
     Case("scale_1e4", "the base scene with all lengths times 1e4, sigma times 1e-4, "
          "intensity times 1e8: the same image", lambda w, h: scaled(base_scene(w, h), 1e4),
          invariance=(("scale", "base"),), reference_case="base"),
+    Case("scale_1e-9", "the base scene with all lengths times 1e-9, sigma times 1e9, "
+         "intensity times 1e-18: the same image", lambda w, h: scaled(base_scene(w, h), 1e-9),
+         invariance=(("scale", "base"),), reference_case="base"),
+    Case("scale_1e9", "the base scene with all lengths times 1e9, sigma times 1e-9, "
+         "intensity times 1e18: the same image", lambda w, h: scaled(base_scene(w, h), 1e9),
+         invariance=(("scale", "base"),), reference_case="base"),
+    Case("moved_1e6", "the base scene moved by (1e6, -1e6, 1e6), far from the origin: "
+         "the same image", lambda w, h: moved(base_scene(w, h), (1e6, -1e6, 1e6)),
+         invariance=(("position", "base"),), reference_case="base"),
+    Case("camera_500", "the base scene seen from 500 units away, the field of view "
+         "(0.43 degrees) keeping the framing", camera_at(500.0)),
+    Case("camera_5000", "the base scene seen from 5000 units away at 0.043 degrees: "
+         "camera_500's image but for the perspective (0.35% in the reference)",
+         camera_at(5000.0), invariance=(("distance", "camera_500"),)),
     Case("murky_peak", "the murky phase function's forward peak: a spot shines at the camera",
          _murky, mask_lights=True),
     Case("grazing_directional", "a directional light travelling 1.1 degrees off the "

@@ -1,0 +1,146 @@
+"""How far the renderers hold at extreme ratios (issue 11, kind 3): prints
+the tables of docs/lmm.md, docs/gl_shafts.md and docs/scene_export.md
+("Precision").
+
+  python3 -m validation.precision --build-dir build [--width 48]
+
+The scene is the hard cases' base scene (validation/hard/cases.py: a spot
+in fog over a floor, a black ball shadowing the shaft; the case of
+/work/shared/cases/far_camera.json), at --width x 3/4 of it, with:
+
+- the camera at 5 ... 5e7 units with the field of view that keeps the
+  framing (a field of view below 1e-6 degrees is refused by the parser):
+  each renderer against the reference at the same distance (256 samples;
+  the reference's own line is its distance from the reference at 500
+  units, where the perspective is already flat);
+- every length times 1e-12 ... 1e12 (coefficients over it, intensities
+  times its square): each renderer against its own image of the plain
+  scene (the reference and lmm draw the same samples, so only rounding
+  differs);
+- the scene moved by 1e3 ... 1e9 along (1, -1, 1): likewise.
+
+Relative RMS over the lit region (shafts_compare, lit 0.01); 'fail' where a
+renderer exits with an error. Renderers: lmm_tracer's reference and lmm
+modes, gl_shafts, and POV-Ray through scene_export when povray is
+installed.
+"""
+
+import argparse
+import json
+import math
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+from .hard.cases import base_scene, camera_at, moved, scaled
+
+DISTANCES = [5.0, 50.0, 500.0, 5000.0, 5e4, 5e5, 5e6, 5e7]
+SCALES = [1e-12, 1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9, 1e12]
+OFFSETS = [1e3, 1e6, 1e7, 1e8, 1e9]
+
+
+def renderers(build, work):
+    def lmm(mode):
+        def render(scene, out):
+            subprocess.run([str(build / "lmm_tracer" / "lmm_tracer"), str(scene), "-o", str(out),
+                            "--mode", mode, "--spp", "64", "--seed", "1", "-q"],
+                           check=True, capture_output=True)
+        return render
+
+    def gl(scene, out):
+        subprocess.run([str(build / "gl_shafts" / "gl_shafts"), str(scene), "-o", str(out), "-q"],
+                       check=True, capture_output=True)
+
+    def pov(scene, out):
+        pov_file = out.with_suffix(".pov")
+        subprocess.run([str(build / "scene_export" / "scene_export"), str(scene), "--to", "pov",
+                        "-o", str(pov_file)], check=True, capture_output=True)
+        subprocess.run(["povray", pov_file.with_suffix(".ini").name], cwd=str(out.parent),
+                       check=True, capture_output=True)
+    out = [("reference", lmm("reference")), ("lmm", lmm("lmm")), ("gl_shafts", gl)]
+    if shutil.which("povray"):
+        out.append(("povray", pov))
+    return out
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--build-dir", default="build")
+    ap.add_argument("--width", type=int, default=48)
+    args = ap.parse_args(argv)
+    build = Path(args.build_dir).resolve()
+    w, h = args.width, args.width * 3 // 4
+    compare = build / "validation" / "shafts_compare"
+    with tempfile.TemporaryDirectory(prefix="precision.") as tmp:
+        work = Path(tmp)
+        rs = renderers(build, work)
+        count = [0]
+
+        def render(name, scene, fn):
+            count[0] += 1
+            path = work / ("s%d.json" % count[0])
+            path.write_text(json.dumps(scene))
+            out = work / ("s%d.exr" % count[0])
+            try:
+                fn(path, out)
+            except subprocess.CalledProcessError:
+                return None
+            return out
+
+        def error(ref, img):
+            if ref is None or img is None:
+                return "fail"
+            p = subprocess.run([str(compare), str(ref), str(img), "--json"],
+                               capture_output=True, text=True)
+            if p.returncode != 0:
+                return "fail"
+            e = json.loads(p.stdout)["rel_rms"]
+            return "%.2g%%" % (100 * e) if e >= 1e-4 else "< 0.01%"
+
+        def reference(scene):
+            path = work / "ref.json"
+            path.write_text(json.dumps(scene))
+            out = work / ("ref%d.exr" % count[0])
+            count[0] += 1
+            try:
+                subprocess.run([str(build / "lmm_tracer" / "lmm_tracer"), str(path), "-o",
+                                str(out), "--spp", "256", "--seed", "7", "-q"],
+                               check=True, capture_output=True)
+            except subprocess.CalledProcessError:
+                return None
+            return out
+
+        names = [n for n, _ in rs]
+        print("Camera distance (the framing kept), against the reference there:\n")
+        print("| distance | fov (degrees) | " + " | ".join(names) + " |")
+        print("|---" * (len(names) + 2) + "|")
+        ref500 = reference(camera_at(500.0)(w, h))
+        for d in DISTANCES:
+            scene = camera_at(d)(w, h)
+            ref = reference(scene)
+            cells = []
+            for n, fn in rs:
+                img = render(n, scene, fn)
+                cells.append(error(ref500 if n == "reference" else ref,
+                                   img if n != "reference" else ref))
+            print("| %g | %.3g | %s |" % (d, scene["camera"]["fov_y_deg"], " | ".join(cells)))
+        print("\nScale (every length times it), against the renderer's own plain image:\n")
+        print("| scale | " + " | ".join(names) + " |")
+        print("|---" * (len(names) + 1) + "|")
+        plain = {n: render(n, base_scene(w, h), fn) for n, fn in rs}
+        for k in SCALES:
+            cells = [error(plain[n], render(n, scaled(base_scene(w, h), k), fn)) for n, fn in rs]
+            print("| %g | %s |" % (k, " | ".join(cells)))
+        print("\nPosition (moved by d (1, -1, 1)), against the renderer's own plain image:\n")
+        print("| d | " + " | ".join(names) + " |")
+        print("|---" * (len(names) + 1) + "|")
+        for o in OFFSETS:
+            cells = [error(plain[n], render(n, moved(base_scene(w, h), (o, -o, o)), fn))
+                     for n, fn in rs]
+            print("| %g | %s |" % (o, " | ".join(cells)))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
