@@ -24,7 +24,7 @@ part of every b; it is far below the errors classified here.
 A row with bias names its cause from CAUSES, the known causes keyed by
 renderer and scene feature, each backed by a measurement (docs/validation.md,
 "Bias or noise"); where the scene has a twin (twins.py) the note adds the
-renderer's error on the twin, which lacks the approximated features.
+renderer's verdict on the twin, which lacks the approximated features.
 """
 
 from .metrics import fmt_percent
@@ -53,7 +53,7 @@ SERIES = {
                   and "lattice" not in p, lambda p: p["planes"], False, "planes"),
     "povray": (lambda p: "intervals" in p, lambda p: p["intervals"] * p.get("samples", 1),
                False, "samples along a ray"),
-    "eevee": (lambda p: "samples" in p, _eevee_count, False, "volumetric samples"),
+    "eevee": (lambda p: "samples" in p, _eevee_count, False, "volumetric samples per pixel"),
     # The Blender add-on's engines: lmm_tracer's reference mode, and
     # gl_shafts at its defaults (one run, no series).
     "addon_tracer": (lambda p: "spp" in p, lambda p: p["spp"], True, "spp"),
@@ -62,7 +62,9 @@ SERIES = {
 
 
 def features(data):
-    """The features of a scene (its dict) that CAUSES are keyed by."""
+    """The features of a scene (its dict) that CAUSES are keyed by: medium,
+    phase:TYPE, phong, reflect, transmit, shadows, several_lights,
+    several_lights_in_medium, light_map, light_in_view."""
     out = set()
     medium = data.get("medium")
     if isinstance(medium, dict):
@@ -79,6 +81,10 @@ def features(data):
         out.add("shadows")
     if len(lights) > 1:
         out.add("several_lights")
+        if "medium" in out:
+            out.add("several_lights_in_medium")
+    if any(isinstance(l, dict) and "light_map" in l for l in lights):
+        out.add("light_map")
     try:
         if light_mask(data):
             out.add("light_in_view")
@@ -97,7 +103,12 @@ CAUSES = [
      "Nishita murky phase exported as one HG lobe, g 0.567"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:rayleigh",
      "Rayleigh phase exported as two HG lobes"),
-    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phong", "Phong highlights exported as Glossy"),
+    (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phong",
+     "Phong highlights exported as Glossy"),
+    (("eevee",), "several_lights_in_medium",
+     "surfaces lit through the medium not attenuated (several lights)"),
+    (("eevee",), "light_map", "light map approximated"),
+    (("eevee",), "transmit", "glass by screen-space refraction"),
     (("eevee",), "medium", "EEVEE's froxel volumetrics"),
     (("gl_shafts", "addon_sweep"), "reflect",
      "reflecting and transmitting materials drawn opaque"),
