@@ -175,6 +175,7 @@ static void shadow_2d_spot(gs__light_setup *ls, const sh_light *l) {
   set_row(&m, 3, l->direction, l->position, 0);
   ls->nfaces = 1;
   ls->face_vp[0] = m;
+  ls->shadow_span = 2.0 * l->tan_outer;
 }
 
 static void shadow_cube(gs__light_setup *ls, const sh_light *l) {
@@ -187,6 +188,7 @@ static void shadow_cube(gs__light_setup *ls, const sh_light *l) {
   static const double ma[6][3] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                   {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
   ls->nfaces = 6;
+  ls->shadow_span = 2.0;
   for (int f = 0; f < 6; f++) {
     sh_mat4 m = {{{0}}};
     set_row(&m, 0, sh_v3(sc[f][0], sc[f][1], sc[f][2]), l->position, 0);
@@ -246,6 +248,7 @@ static int shadow_ortho(gs__light_setup *ls, const sh_light *l,
   m.m[3][3] = 1.0;
   ls->nfaces = 1;
   ls->face_vp[0] = m;
+  ls->shadow_span = fmax(x1 - x0, y1 - y0);
   return 1;
 }
 

@@ -54,6 +54,10 @@ typedef struct gs__light_setup {
                               facing (counter-clockwise) in face f */
   sh_mat4 lookup;          /* 2D maps: world to ([0,1]^2, depth) */
   double shadow_near;      /* perspective maps' near distance */
+  double shadow_span;      /* the world length the map's side spans: an
+                              orthographic map's; per unit of distance from
+                              the light for perspective ones (2 tan(outer)
+                              for a spot, 2 for a cube map's face) */
 
   /* A directional light's window: s = win_s . p + win_s[3], t alike. */
   double win_s[4], win_t[4];

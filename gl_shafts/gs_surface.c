@@ -25,9 +25,10 @@ static sh_status background(const gs__frame *fr, const gs__target *t,
 }
 
 /* Draws every shape with the surface programs, shaded by light ls (NULL:
- * none), with emission and ambient if base. */
+ * none) with its shadow map sm, with emission and ambient if base. */
 static sh_status draw_shapes(const gs__frame *fr, const gs__geometry *geom,
-                             const gs__light_setup *ls, int base, sh_error *err) {
+                             const gs__light_setup *ls, const gs__shadow_map *sm,
+                             int base, sh_error *err) {
   const sh_scene *scene = fr->scene;
   sh_mat4 vp = gs__view_proj(fr->view);
   glBindVertexArray(geom->vao);
@@ -42,6 +43,10 @@ static sh_status draw_shapes(const gs__frame *fr, const gs__geometry *geom,
         gs__param_mat4(p, "u_viewproj", &vp);
         gs__param_f(p, "u_near", fr->view->znear);
         gs__param_f(p, "u_lit", ls != NULL);
+        gs__param_f(p, "u_shadow_texel",
+                    ls && ls->shadow != GS__SHADOW_NONE && sm && sm->res > 0
+                        ? ls->shadow_span / sm->res
+                        : 0.0);
         sh_status st = gs__program_use(fr->progs, &gs__glsl_surface_vert,
                                        &gs__glsl_surface_frag, p, &prog, err);
         if (st != SH_OK) return st;
@@ -63,6 +68,12 @@ static sh_status draw_shapes(const gs__frame *fr, const gs__geometry *geom,
         gs__uniform_v3(prog, "u_inflate_center", gs__anchored(fr->view, s->center));
         gs__uniform_f(prog, "u_inflate", s->inflate);
       }
+      /* An open shape drawn into this light's shadow map offsets its own
+       * lookups (surface.frag). */
+      gs__uniform_f(prog, "u_open",
+                    ls && ls->shadow != GS__SHADOW_NONE && ls->casts[i] && !s->closed
+                        ? 1.0
+                        : 0.0);
       gs__uniform_v3(prog, "u_kd", m->diffuse);
       gs__uniform_v3(prog, "u_ks", m->specular);
       gs__uniform_f(prog, "u_shininess", m->shininess);
@@ -145,7 +156,7 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
       if (ls->shadow != GS__SHADOW_NONE) gs__shadow_bind(&shadows[light]);
       if (maps[light]) glBindTextureUnit(GS_UNIT_MAP, maps[light]);
     }
-    st = draw_shapes(fr, geom, ls, pass < 0, err);
+    st = draw_shapes(fr, geom, ls, ls ? &shadows[light] : NULL, pass < 0, err);
     glDisable(GL_SCISSOR_TEST);
   }
   if (st != SH_OK) return st;

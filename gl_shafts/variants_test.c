@@ -66,6 +66,7 @@ static void build_passes(const gs__frame *fr, const gs__light_setup *ls, int row
       gs__param_mat4(p, "u_viewproj", &id);
       gs__param_f(p, "u_near", fr->view->znear);
       gs__param_f(p, "u_lit", lit);
+      gs__param_f(p, "u_shadow_texel", 0.01);
       build(fr, "surface", &gs__glsl_surface_vert, &gs__glsl_surface_frag, p);
     }
   if (ls->shadow != GS__SHADOW_NONE)

@@ -242,14 +242,29 @@ vec3 shadow_coord(vec4 q) {
 #endif
 }
 
-// The light's visibility at p from its shadow map (1: lit).
-float shadow_at(vec3 p) {
+// A point of the medium is lit only if all four texels of its filtered
+// shadow lookup say so, and it is nearer the light than what they hold by
+// 1e-4 of its depth (reversed depth, which for perspective maps is 1 /
+// distance): behind a zero-thickness caster, stored with no bias, at least
+// one of the four does not (gs_shadow.c; a plane's depth is affine in the
+// map), and a ray's end on a caster's face that squarely faces the light
+// (the same depth in all four) counts as in its shadow. A lookup that mixed
+// them let light through closed walls, and a light inside a closed box
+// showed a halo on the box. Shadows in the medium so grow by less than a
+// texel at their edges.
+const float VOLUME_MARGIN = 1.0 - 1e-4;
+float shadow_volume(float filtered) { return step(0.9999, filtered); }
+
+// The light's visibility at p from its shadow map (1: lit); `margin`
+// scales the point's reversed depth (1: none).
+float shadow_at(vec3 p, float margin) {
 #if SHADOW == GS_SHADOW_2D
-  return texture(u_shadow2d, shadow_coord(u_shadow_mat * vec4(p, 1.0)));
+  vec3 c = shadow_coord(u_shadow_mat * vec4(p, 1.0));
+  return texture(u_shadow2d, vec3(c.xy, c.z * margin));
 #elif SHADOW == GS_SHADOW_CUBE
   vec3 d = p - u_lpos;
   vec3 a = abs(d);
-  return texture(u_shadowcube, vec4(d, u_shadow_near / max(a.x, max(a.y, a.z))));
+  return texture(u_shadowcube, vec4(d, margin * u_shadow_near / max(a.x, max(a.y, a.z))));
 #else
   return 1.0;
 #endif

@@ -20,7 +20,7 @@ vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
 
 // A directional light's visibility at view depth z, and over [a, b] with
 // its edge found by bisection where the ends differ (as for point lights).
-float vis_dir(float z, vec3 d) { return shadow_at(u_eye + z * d); }
+float vis_dir(float z, vec3 d) { return shadow_volume(shadow_at(u_eye + z * d, VOLUME_MARGIN)); }
 
 float vis_part(float a, float b, float mid, vec3 d) {
 #if SHADOW != GS_SHADOW_NONE

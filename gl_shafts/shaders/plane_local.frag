@@ -63,11 +63,14 @@ vec3 sample_at(float c, float s) {
 float vis_at(float c, float s) {
 #if SHADOW == GS_SHADOW_2D
   vec4 q = g_qf + (g_h * s / c) * g_qd;
-  return texture(u_shadow2d, shadow_coord(q));
+  vec3 sc = shadow_coord(q);
+  return shadow_volume(texture(u_shadow2d, vec3(sc.xy, sc.z * VOLUME_MARGIN)));
 #elif SHADOW == GS_SHADOW_CUBE
   vec3 wi = c * g_e - s * g_dn;
   vec3 a = abs(wi);
-  return texture(u_shadowcube, vec4(-wi, u_shadow_near * c / (g_h * max(a.x, max(a.y, a.z)))));
+  return shadow_volume(
+      texture(u_shadowcube, vec4(-wi, VOLUME_MARGIN * u_shadow_near * c /
+                                           (g_h * max(a.x, max(a.y, a.z))))));
 #else
   return 1.0;
 #endif

@@ -8,12 +8,17 @@ does not hold for it.
 """
 
 import copy
+import json
 import math
+from pathlib import Path
 from dataclasses import dataclass, field
 
 # Scene construction.
 
 BOX = {"min": [-2.0, 0.0, -2.0], "max": [2.0, 4.0, 2.0]}  # the medium: size 4
+
+# Inputs from reports (issue 11) and their variants.
+TESTDATA = Path(__file__).resolve().parents[2] / "testdata" / "hard_cases"
 
 
 def base_scene(width, height):
@@ -95,6 +100,7 @@ class Case:
     only: tuple = ()                   # renderers it applies to (empty: all)
     extra: dict = field(default_factory=dict)   # renderer -> [(label, params)]
     invariance: tuple = ()             # (kind, other case name) checks
+    black: bool = False                # the truth is 0 everywhere: so must every image be
     # The case whose reference is the truth for this one (a scaled scene's
     # true image is its base scene's); None: its own reference.
     reference_case: str = None
@@ -250,6 +256,17 @@ def _behind_camera(w, h):
     return s
 
 
+def _handed(name):
+    """A builder for one of testdata/hard_cases/ (issue 11's inputs and
+    their variants, made by make_variants.py there) at the suite's size."""
+    def build(w, h):
+        with open(TESTDATA / (name + ".json")) as f:
+            scene = json.load(f)
+        scene["camera"]["width"], scene["camera"]["height"] = w, h
+        return scene
+    return build
+
+
 def _pixel(w, h, n=1):
     # In the base scene the centre ray lies in the plane x = 0 through the
     # light that touches the sphere: it grazes the edge of the sphere's
@@ -312,6 +329,16 @@ CASES = [
     Case("image_3x3", "the base scene at 3x3 pixels (for the 1x1 invariance)", _pixel3),
     Case("image_1x1", "a 1x1 image: its pixel is the centre pixel of the 3x3 image",
          _pixel, invariance=(("pixel", "image_3x3"),)),
+    Case("narrow_spot", "a 0.3-degree spot (a laser) in fog, the light in view: the "
+         "beam is thinner than a pixel (issue 11, kind 1)", _handed("narrow_spot")),
+    Case("closed_room", "a closed room of zero-thickness walls, the sun outside, the "
+         "camera inside: black (issue 11, kind 2)", _handed("closed_room"), black=True),
+    Case("window_room", "the closed room with a 1 x 1 window in its sunlit wall: a "
+         "shaft through it", _handed("window_room")),
+    Case("spot_blocked", "a plate 0.005 below a spot blocks its whole cone: black",
+         _handed("spot_blocked_near"), black=True),
+    Case("light_in_box", "a point light inside a closed box of six quads: black "
+         "outside, no halo", _handed("light_in_quads"), black=True),
 ]
 
 

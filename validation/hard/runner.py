@@ -217,6 +217,14 @@ def _check(ctx, case, adapter, r, run, ref_img, mask, scratch, tool, image_dir):
     r["checks"].append({"name": "finite, non-negative", "ok": whole["bad_values"] == 0,
                         "value": whole["bad_values"], "bound": 0})
     bound = bound_for(adapter.name, r["kind"], case.name, ctx.mode)
+    if case.black:
+        # The truth is 0 everywhere (its lit region is empty, so the error
+        # says nothing): the largest value must be 0 too, where the
+        # renderer's error is bounded.
+        r["checks"].append({"name": "black (largest value)",
+                            "ok": bound is None or whole["max_abs"] == 0,
+                            "value": whole["max_abs"], "bound": 0 if bound is not None else None,
+                            "note": None if bound is not None else "reported, not bounded"})
     r["checks"].append({"name": "error", "ok": bound is None or m["rel_rms"] <= bound,
                         "value": m["rel_rms"], "bound": bound,
                         "note": None if bound is not None else "reported, not bounded"})
