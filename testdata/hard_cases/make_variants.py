@@ -4,7 +4,8 @@
 other directions, moved far from the origin, with a window; a spot whose
 whole cone a plate close to it blocks; a point light inside a closed box
 (one box shape, and six quads). Run it after changing a case; the tests
-(gl_shafts/thin_geometry_test.c, lmm_tracer/lmm_test.c) read the files.
+(gl_shafts/thin_geometry_test.c, lmm_tracer/lmm_volume_test.c, the hard
+cases of validation/hard/cases.py) read the files.
 
     python3 testdata/hard_cases/make_variants.py
 """
