@@ -57,10 +57,14 @@ static void *sh__oiio_find(char *why, size_t size) {
   if (dladdr((void *)&sh__oiio_find, &info) && info.dli_fname) {
     const char *slash = strrchr(info.dli_fname, '/');
     if (slash) {
-      char path[4096];
-      snprintf(path, sizeof path, "%.*s/%s", (int)(slash - info.dli_fname),
-               info.dli_fname, SH__OIIO_PLUGIN_NAME);
-      h = sh__oiio_try(path, why, size);
+      size_t n = (size_t)(slash - info.dli_fname) + sizeof SH__OIIO_PLUGIN_NAME + 1;
+      char *path = malloc(n);
+      if (path) {
+        snprintf(path, n, "%.*s/%s", (int)(slash - info.dli_fname),
+                 info.dli_fname, SH__OIIO_PLUGIN_NAME);
+        h = sh__oiio_try(path, why, size);
+        free(path);
+      }
     }
   }
 #ifdef SH_OIIO_PLUGIN_PATH

@@ -418,7 +418,8 @@ static sh_status check_meshes(const sh_mesh_data *meshes, int nmeshes,
 
 static sh_status parse_buffer(const char *text, size_t len, const char *name,
                               const char *base_dir, const sh_mesh_data *meshes,
-                              int nmeshes, sh_scene **out, sh_error *err) {
+                              int nmeshes, int absolute_ok, sh_scene **out,
+                              sh_error *err) {
   sh_error local;
   json_error_t je;
   sh_status st;
@@ -437,6 +438,7 @@ static sh_status parse_buffer(const char *text, size_t len, const char *name,
   p.c.name = name;
   p.c.err = err;
   p.base_dir = base_dir;
+  p.absolute_ok = absolute_ok;
   p.meshes = meshes;
   p.nmeshes = nmeshes;
   sh_scene *s = p.scene = calloc(1, sizeof *s);
@@ -462,7 +464,7 @@ sh_status sh_scene_parse_ex(const char *text, const char *name,
                             const char *base_dir, const sh_mesh_data *meshes,
                             int nmeshes, sh_scene **out, sh_error *err) {
   return parse_buffer(text, text ? strlen(text) : 0, name, base_dir, meshes,
-                      nmeshes, out, err);
+                      nmeshes, 1, out, err);
 }
 
 sh_status sh_scene_parse_arrays(const char *text, const char *name,
@@ -580,7 +582,7 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
     dir[1] = '\0';
   else
     *slash = '\0';
-  st = parse_buffer(buf, len, path, dir, NULL, 0, out, err);
+  st = parse_buffer(buf, len, path, dir, NULL, 0, 0, out, err);
   free(dir);
   free(buf);
   return st;

@@ -29,7 +29,10 @@ extern "C" {
 sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err);
 
 /* As sh_scene_load, from text in memory; `name` is used in messages and
- * `base_dir` resolves relative file names. */
+ * `base_dir` resolves relative file names, which must stay in its tree.
+ * Unlike a scene file (whose absolute file names are refused), text a
+ * program passes in may name files by absolute paths: the program chose
+ * them (the Blender add-on names the user's images where they are). */
 sh_status sh_scene_parse(const char *text, const char *name,
                          const char *base_dir, sh_scene **out, sh_error *err);
 

@@ -19,10 +19,17 @@ sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
   if (!name[0])
     return sh__fail_at(&p->c, key, SH_ERR_SCENE,
                        "expected a file name, found an empty string");
-  if (name[0] == '/') bl = 0;
+  /* A scene file names only files in its own directory tree: an absolute
+   * name could be any file of the system (issue 11, files that escape).
+   * Text a program passes in (sh_scene_parse) may: the program chose. */
+  if (name[0] == '/' && !p->absolute_ok)
+    return sh__fail_at(&p->c, key, SH_ERR_SCENE,
+                       "the file name '%s' is absolute: a scene names its "
+                       "files relative to its own directory, inside its tree",
+                       name);
   char *path = malloc(bl + strlen(name) + 2);
   if (!path) return sh__fail_at(&p->c, key, SH_ERR_NOMEM, "out of memory");
-  if (bl == 0)
+  if (bl == 0 || name[0] == '/')
     strcpy(path, name);
   else
     sprintf(path, "%s%s%s", base, base[bl - 1] == '/' ? "" : "/", name);
@@ -43,8 +50,7 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
                        "the %s '%s' (resolved to '%s') is %s, not a regular "
                        "file",
                        kind, name, path, sh_file_kind(sb.st_mode));
-  /* Relative names must stay in the scene's tree; an absolute name is the
-   * writer's explicit choice (the validation's derived scenes use them). */
+  /* Relative names must stay in the scene's tree. */
   char *real = NULL;
   int inside = name[0] == '/' ? 1 : sh__confined(path, p->base_dir, &real);
   if (inside == 0) {
@@ -77,9 +83,12 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
   memset(&e, 0, sizeof e);
   if ((st = data ? sh_image_read_data(path, img, &e)
                   : sh_image_read(path, img, &e))) {
-    char prefix[700];
-    snprintf(prefix, sizeof prefix, "cannot read the image '%s': ", path);
-    sh__fail_from(&p->c, key, &e, prefix);
+    const char *fmt = "cannot read the image '%s': ";
+    size_t n = strlen(fmt) + strlen(path);
+    char *prefix = malloc(n);
+    if (prefix) snprintf(prefix, n, fmt, path);
+    sh__fail_from(&p->c, key, &e, prefix ? prefix : "cannot read an image: ");
+    free(prefix);
     goto out;
   }
   if (img->width < 1 || img->height < 1 || !img->rgb) {

@@ -26,6 +26,8 @@ extern "C" {
 typedef struct sh__parser {
   sh__pctx c;
   const char *base_dir; /* NULL or "": file names are used as they are */
+  int absolute_ok;      /* text from the caller (sh_scene_parse) may name
+                           files by absolute paths; a scene file may not */
   sh_scene *scene;      /* being filled; freed by the caller on error */
   const sh_mesh_data *meshes; /* the caller's in-memory meshes ("data") */
   int nmeshes;
@@ -37,7 +39,8 @@ sh_status sh__syntax_error(const char *text, size_t len, const char *name,
                            const json_error_t *je, sh_error *err);
 
 /* Joins a file name of the scene (member `key`) to the scene's directory,
- * unless it is absolute, into a new string (*out, caller frees). */
+ * unless it is absolute, into a new string (*out, caller frees). An
+ * absolute name in a scene file is refused (SH_ERR_SCENE). */
 sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
                            char **out);
 

@@ -860,6 +860,28 @@ static void test_confined_names(void) {
   }
   unlink(link);
   rmdir(sub);
+  /* An absolute name in a scene file is refused, whatever it names, even
+   * a file in the scene's own directory; text passed in may use one. */
+  char scene[512], text[1024];
+  path_in_tmp(scene, sizeof scene, "absolute.json");
+  snprintf(text, sizeof text,
+           MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
+                        "[{\"type\": \"mesh\", \"material\": \"m\", "
+                        "\"file\": \"%s\"}]}",
+           target);
+  FILE *f = fopen(scene, "w");
+  if (f) {
+    fputs(text, f);
+    fclose(f);
+  }
+  sh_scene *s = NULL;
+  sh_error err;
+  SH_CHECK(sh_scene_load(scene, &s, &err) == SH_ERR_SCENE && s == NULL);
+  SH_CHECK(strstr(err.message, "is absolute") != NULL);
+  SH_CHECK(strcmp(err.path, "shapes[0].file") == 0 && err.line > 0);
+  SH_CHECK(sh_scene_parse(text, "in-memory", tmpdir, &s, &err) == SH_OK);
+  sh_scene_free(s);
+  unlink(scene);
 }
 
 /* Light-map and heightfield texels must be finite and non-negative: NaN,

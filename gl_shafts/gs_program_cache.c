@@ -31,17 +31,22 @@ gs__program_cache_counts gs__program_cache_counts_get(void) {
 void gs__program_cache_dir(char *dir, size_t size) {
   dir[0] = '\0';
   const char *env = getenv("SHAFTS_PROGRAM_CACHE");
-  if (env) {
-    if (strcmp(env, "off") && strcmp(env, "0"))
-      snprintf(dir, size, "%s", env);
-    return;
-  }
   const char *xdg = getenv("XDG_CACHE_HOME");
   const char *home = getenv("HOME");
-  if (xdg && xdg[0] == '/')
-    snprintf(dir, size, "%s/shafts/programs", xdg);
-  else if (home && home[0] == '/')
-    snprintf(dir, size, "%s/.cache/shafts/programs", home);
+  int n = 0;
+  if (env) {
+    if (strcmp(env, "off") && strcmp(env, "0"))
+      n = snprintf(dir, size, "%s", env);
+  } else if (xdg && xdg[0] == '/') {
+    n = snprintf(dir, size, "%s/shafts/programs", xdg);
+  } else if (home && home[0] == '/') {
+    n = snprintf(dir, size, "%s/.cache/shafts/programs", home);
+  }
+  /* A directory whose files' names (and their temporaries') would not fit
+   * the buffers (PATH_MAX) turns the cache off rather than being cut to
+   * another directory. */
+  if (n < 0 || (size_t)n + GS__CACHE_NAME_ROOM >= size)
+    dir[0] = '\0';
 }
 
 void gs__program_cache_driver(char *buf, size_t size) {

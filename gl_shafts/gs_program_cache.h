@@ -59,6 +59,10 @@ void gs__program_cache_store(GLuint prog, const gs__glsl *vs,
  * memory or for an unknown include), and loading and storing by key in a given directory. store
  * returns 1 if a file was written. */
 void gs__program_cache_dir(char *dir, size_t size);
+/* Room the cache keeps after the directory in a buffer of its size: "/",
+ * 16 hex digits, ".bin" and a temporary's ".<pid>.<n>.tmp". A longer
+ * directory turns the cache off (never cut to another directory). */
+#define GS__CACHE_NAME_ROOM 64
 void gs__program_cache_driver(char *buf, size_t size);
 char *gs__program_cache_key(const char *driver, const gs__glsl *vs,
                             const gs__glsl *fs, const char *defines,

@@ -217,7 +217,23 @@ static void test_unwritable(const sh_scene *scene, const char *dir) {
   tu_check(c1.stores == c0.stores, "and nothing is stored");
   sh_image_free(&img);
   remove(file);
-  char got[64];
+  char got[4096];
+  /* A directory too long for the buffers turns the cache off instead of
+   * being cut to another directory (issue 11, fixed-size paths). */
+  char *lng = malloc(5000);
+  if (lng) {
+    memset(lng, 'a', 4999);
+    lng[0] = '/';
+    lng[4999] = '\0';
+    setenv("SHAFTS_PROGRAM_CACHE", lng, 1);
+    gs__program_cache_dir(got, sizeof got);
+    tu_check(got[0] == '\0', "a directory longer than PATH_MAX turns it off");
+    lng[sizeof got - GS__CACHE_NAME_ROOM - 1] = '\0';
+    setenv("SHAFTS_PROGRAM_CACHE", lng, 1);
+    gs__program_cache_dir(got, sizeof got);
+    tu_check(!strcmp(got, lng), "the longest directory that fits is kept");
+    free(lng);
+  }
   setenv("SHAFTS_PROGRAM_CACHE", "off", 1);
   gs__program_cache_dir(got, sizeof got);
   tu_check(got[0] == '\0', "SHAFTS_PROGRAM_CACHE=off turns it off");

@@ -66,6 +66,31 @@ cmp -s "$out/S.json" "$data/point_medium.json" && cmp -s "$out/T.blender.json" "
 [ -e "$out/T.py" ] && { echo "FAIL: a refused export wrote T.py"; fail=1; }
 rm "$out/S.json" "$out/T.blender.json"
 empty "refused exports" "$out"
+# Paths of any length: a POV-Ray export 1500 characters deep writes its
+# light map beside the .pov under its own name (fixed 1200-byte buffers
+# cut the name and wrote the map over another file).
+long=$out
+for i in 1 2 3 4 5 6; do long=$long/$(printf 'd%.0s' $(seq 250)); done
+mkdir -p "$long"
+"$tool" "$data/spot_gobo.json" --to pov -o "$long/g.pov" 2>/dev/null; check "a 1500-character path" 0 $?
+[ -s "$long/g_map0.exr" ] && [ -s "$long/g.pov" ] && [ -s "$long/g.ini" ] \
+  || { echo "FAIL: the long-path export: $(ls "$long")"; fail=1; }
+[ "$(find "$out" -type f | wc -l)" = 3 ] || { echo "FAIL: long-path export files: $(find "$out" -type f)"; fail=1; }
+rm -rf "$out"/d*
+# The JSON export names files relative to itself: written elsewhere, it
+# carries copies of the scene's files and loads from there; a scene file
+# naming a file by an absolute path is refused (exit 2).
+"$tool" "$data/spot_gobo.json" --to json -o "$out/n.json" 2>/dev/null; check "json export elsewhere" 0 $?
+grep -q '"image": "n.map0.png"' "$out/n.json" || { echo "FAIL: the export's light map name: $(grep image "$out/n.json")"; fail=1; }
+cmp -s "$out/n.map0.png" "$data/assets/$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["lights"][0]["light_map"]["image"].split("/")[-1])' "$data/spot_gobo.json")" \
+  || { echo "FAIL: the copied light map differs"; fail=1; }
+"$tool" "$out/n.json" --to json -o "$out/m.json" 2>/dev/null; check "the export loads again" 0 $?
+grep -q '"image": "n.map0.png"' "$out/m.json" || { echo "FAIL: a file inside the tree is named, not copied"; fail=1; }
+sed "s|\"n.map0.png\"|\"$out/n.map0.png\"|" "$out/n.json" >"$out/abs.json"
+"$tool" "$out/abs.json" --to json -o "$out/x.json" 2>"$dir/err"; check "an absolute file name" 2 $?
+grep -q "lights\[0\].light_map.image: the file name '.*' is absolute" "$dir/err" \
+  || { echo "FAIL: absolute-name message: $(cat "$dir/err")"; fail=1; }
+rm -f "$out"/*
 
 # --strict refuses approximations and writes nothing; exact exports pass.
 "$tool" "$data/phase_nishita_hazy.json" --to blender -o "$out/h.py" --strict 2>"$dir/err"

@@ -11,11 +11,69 @@ static json_t *vec(sh_vec3 v) {
   return json_pack("[fff]", v.x, v.y, v.z);
 }
 
-/* An absolute path for a file the scene loaded (it exists). */
-static json_t *file_path(const char *path) {
+/* Where the export's files go and how they are named: file names in the
+ * export are relative to its directory and stay in its tree (a scene names
+ * no other files, docs/scene-format.md, "Files"). */
+typedef struct files {
+  se_output *out;
+  char *dir;      /* the export's directory, resolved */
+  char *prefix;   /* the export's path without ".json": copies are
+                     PREFIX.<what><i>.<ext> */
+  const char *stem; /* the export's file name without ".json" */
+  int failed;     /* out of memory, or a file that cannot be read */
+  char *why;      /* the first failure's message */
+} files;
+
+/* PREFIX.WHAT<i>EXT, malloc'd. */
+static char *copy_name(const char *prefix, const char *what, int i,
+                       const char *ext) {
+  int n = snprintf(NULL, 0, "%s.%s%d%s", prefix, what, i, ext);
+  char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (s) snprintf(s, (size_t)n + 1, "%s.%s%d%s", prefix, what, i, ext);
+  return s;
+}
+
+static void fail(files *f, const char *what, const char *path) {
+  if (!f->failed) {
+    const char *fmt = "cannot copy the %s file '%s' into the export";
+    int n = snprintf(NULL, 0, fmt, what, path);
+    f->why = n >= 0 ? malloc((size_t)n + 1) : NULL;
+    if (f->why) snprintf(f->why, (size_t)n + 1, fmt, what, path);
+  }
+  f->failed = 1;
+}
+
+/* A file the scene loaded, as the export names it: its path relative to
+ * the export's directory if it lies in that tree, else a copy of its bytes
+ * written beside the export as STEM.<what><i>.<ext>. */
+static json_t *file_ref(files *f, const char *path, const char *what, int i) {
   char *real = realpath(path, NULL);
-  json_t *s = json_string(real ? real : path);
+  if (!real) {
+    fail(f, what, path);
+    return NULL;
+  }
+  size_t n = strlen(f->dir);
+  if (!strncmp(real, f->dir, n) && real[n] == '/') {
+    json_t *s = json_string(real + n + 1);
+    free(real);
+    return s;
+  }
+  const char *slash = strrchr(real, '/'), *dot = strrchr(real, '.');
+  const char *ext = dot && dot > slash + 1 ? dot : "";
+  char *copy = copy_name(f->prefix, what, i, ext);
+  char *name = copy_name(f->stem, what, i, ext);
+  FILE *in = fopen(real, "rb");
+  se_buf *b = copy && name && in ? se_output_text(f->out, copy) : NULL;
+  char chunk[1 << 16];
+  size_t got;
+  while (b && (got = fread(chunk, 1, sizeof chunk, in)) > 0)
+    se_buf_append(b, chunk, got);
+  if (!b || ferror(in) || b->failed) fail(f, what, path);
+  if (in) fclose(in);
+  json_t *s = b ? json_string(name) : NULL;
   free(real);
+  free(copy);
+  free(name);
   return s;
 }
 
@@ -43,7 +101,7 @@ static json_t *medium(const sh_medium *m) {
                    vec(m->bmin), "max", vec(m->bmax));
 }
 
-static json_t *light(const sh_light *l) {
+static json_t *light(files *f, const sh_light *l, int i) {
   json_t *o = NULL;
   switch (l->type) {
   case SH_LIGHT_POINT:
@@ -57,7 +115,8 @@ static json_t *light(const sh_light *l) {
                   "inner_angle_deg", l->inner_deg, "exponent", l->exponent);
     if (o && l->has_map)
       json_object_set_new(o, "light_map",
-                          json_pack("{s:o, s:o}", "image", file_path(l->map_file),
+                          json_pack("{s:o, s:o}", "image",
+                                    file_ref(f, l->map_file, "map", i),
                                     "up", vec(l->map_up)));
     break;
   case SH_LIGHT_DIRECTIONAL:
@@ -66,7 +125,8 @@ static json_t *light(const sh_light *l) {
     if (o && l->has_map)
       json_object_set_new(o, "light_map",
                           json_pack("{s:o, s:o, s:o, s:o}", "image",
-                                    file_path(l->map_file), "origin",
+                                    file_ref(f, l->map_file, "map", i),
+                                    "origin",
                                     vec(l->map_origin), "u", vec(l->map_u), "v",
                                     vec(l->map_v)));
     break;
@@ -84,7 +144,8 @@ static json_t *material(const sh_material *m) {
                    "receives_soft_shadows", m->receives_soft_shadows);
 }
 
-static json_t *shape(const sh_scene *s, const sh_shape *sh) {
+static json_t *shape(files *f, const sh_scene *s, const sh_shape *sh,
+                     int i) {
   static const char *types[] = {"mesh", "sphere", "box", "cylinder", "quad",
                                 "heightfield"};
   json_t *o = json_pack("{s:s, s:s}", "type", types[sh->type], "material",
@@ -96,7 +157,7 @@ static json_t *shape(const sh_scene *s, const sh_shape *sh) {
     if (sh->data)
       json_object_set_new(o, "data", json_string(sh->data));
     else
-      json_object_set_new(o, "file", file_path(sh->file));
+      json_object_set_new(o, "file", file_ref(f, sh->file, "mesh", i));
     break;
   case SH_SHAPE_SPHERE:
     json_object_set_new(o, "center", vec(sh->center));
@@ -118,7 +179,7 @@ static json_t *shape(const sh_scene *s, const sh_shape *sh) {
     json_object_set_new(o, "v", vec(sh->v));
     break;
   case SH_SHAPE_HEIGHTFIELD:
-    json_object_set_new(o, "image", file_path(sh->file));
+    json_object_set_new(o, "image", file_ref(f, sh->file, "height", i));
     json_object_set_new(o, "min", vec(sh->bmin));
     json_object_set_new(o, "max", vec(sh->bmax));
     break;
@@ -149,6 +210,32 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
                         sh_error *err) {
   (void)opt;
   (void)notes;
+  files f = {out, NULL, NULL, NULL, 0, NULL};
+  size_t n = strlen(json_path);
+  const char *slash = strrchr(json_path, '/');
+  /* The export's directory: the part before the last slash ("/" for the
+   * root, "." for none). */
+  size_t dl = slash ? (slash == json_path ? 1 : (size_t)(slash - json_path)) : 0;
+  char *parent = malloc(dl + 2);
+  if (parent) {
+    memcpy(parent, slash ? json_path : ".", slash ? dl : 1);
+    parent[slash ? dl : 1] = '\0';
+    f.dir = realpath(parent, NULL);
+    free(parent);
+  }
+  size_t pl = n > 5 && !strcmp(json_path + n - 5, ".json") ? n - 5 : n;
+  f.prefix = malloc(pl + 1);
+  if (f.prefix) {
+    memcpy(f.prefix, json_path, pl);
+    f.prefix[pl] = '\0';
+    f.stem = f.prefix + (slash ? slash - json_path + 1 : 0);
+  }
+  if (!f.dir || !f.prefix) {
+    free(f.dir);
+    free(f.prefix);
+    return sh_error_set(err, SH_ERR_IO, "cannot resolve the directory of '%s'",
+                        json_path);
+  }
   json_t *root = json_pack("{s:s, s:i, s:o, s:o, s:o}", "format", "shafts-scene",
                            "version", 1, "camera", camera(&s->camera),
                            "background", vec(s->background), "ambient",
@@ -156,10 +243,10 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
   if (!root) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   if (s->medium.present) json_object_set_new(root, "medium", medium(&s->medium));
   json_t *lights = json_array(), *materials = json_object(), *shapes = json_array();
-  for (int i = 0; i < s->nlights; i++) json_array_append_new(lights, light(&s->lights[i]));
+  for (int i = 0; i < s->nlights; i++) json_array_append_new(lights, light(&f, &s->lights[i], i));
   for (int i = 0; i < s->nmaterials; i++)
     json_object_set_new(materials, s->materials[i].name, material(&s->materials[i]));
-  for (int i = 0; i < s->nshapes; i++) json_array_append_new(shapes, shape(s, &s->shapes[i]));
+  for (int i = 0; i < s->nshapes; i++) json_array_append_new(shapes, shape(&f, s, &s->shapes[i], i));
   json_object_set_new(root, "lights", lights);
   json_object_set_new(root, "materials", materials);
   json_object_set_new(root, "shapes", shapes);
@@ -178,6 +265,14 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
     se_buf_puts(b, "\n");
   }
   json_decref(root);
+  free(f.dir);
+  free(f.prefix);
+  if (f.failed) {
+    sh_status st = sh_error_set(err, f.why ? SH_ERR_IO : SH_ERR_NOMEM, "%s",
+                                f.why ? f.why : "out of memory");
+    free(f.why);
+    return st;
+  }
   if (!b) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   return SH_OK;
 }

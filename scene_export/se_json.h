@@ -3,8 +3,10 @@
  * It writes the loaded scene back in scene format v1 with everything the
  * loader derived made explicit: every default filled in, spot axes as unit
  * `direction`s (never `look_at`), a spot light map's `up` as the frame the
- * loader built, shape transforms as `matrix`, and file names as absolute
- * paths (so the file may live anywhere). Numbers are printed with 17
+ * loader built, shape transforms as `matrix`, and file names relative to
+ * the output's directory: files outside its tree are copied beside it as
+ * NAME.map<i>.EXT, NAME.mesh<i>.EXT, NAME.height<i>.EXT (a scene names only
+ * files in its own tree). Numbers are printed with 17
  * significant digits, so loading the result gives the same scene; the
  * test se_json_test checks every field. */
 #ifndef SE_JSON_H

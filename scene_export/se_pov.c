@@ -83,11 +83,14 @@ static void card_matrix(pov *p, const se_card *c) {
 static int is_grey(sh_vec3 c) { return c.x == c.y && c.y == c.z; }
 
 static void header(pov *p, const char *name) {
-  char file[200];
-  se_comment_text(se_base_name(p->scene->file ? p->scene->file : "scene"),
-                  file, sizeof file);
+  const char *scene = se_base_name(p->scene->file ? p->scene->file : "scene");
+  size_t fn = strlen(scene) + 2;
+  char *file = malloc(fn);
+  if (file) se_comment_text(scene, file, fn);
   se_buf *b = p->b;
-  se_buf_printf(b, "// POV-Ray 3.7 scene exported by scene_export from %s.\n", file);
+  se_buf_printf(b, "// POV-Ray 3.7 scene exported by scene_export from %s.\n",
+                file ? file : "the scene");
+  free(file);
   se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
                 name, name);
   se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel centre.\n");
@@ -152,10 +155,14 @@ static void helper_texture(se_buf *b, const char *pigment, int hidden) {
 /* The pigment of light i's card: its map, written next to the .pov as
  * NAME_map<i>.exr, each texel filtering light by its colour. */
 static void map_pigment(pov *p, int i) {
-  char file[600];
-  snprintf(file, sizeof file, "%s_map%d.exr", p->name, i);
+  char *file = se_printf_alloc("%s_map%d.exr", p->name, i);
+  if (!file) {
+    p->b->failed = 1;
+    return;
+  }
   se_buf_puts(p->b, "  pigment { image_map { exr ");
   se_pov_string(p->b, file);
+  free(file);
   se_buf_puts(p->b, " interpolate 2 filter all 1 } }\n");
 }
 
@@ -505,6 +512,11 @@ static void choose_frame(pov *p) {
   p->frame = se_frame_pov(scale, p->center);
 }
 
+static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
+                               const char *pov_path, const char *base,
+                               const char *name, se_output *out,
+                               se_notes *notes, sh_error *err);
+
 sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
                        const char *pov_path, se_output *out, se_notes *notes,
                        sh_error *err) {
@@ -513,11 +525,18 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
     return sh_error_set(err, SH_ERR_ARG,
                         "the POV-Ray output '%s' must end in .pov", pov_path);
   const char *base = se_base_name(pov_path);
-  char name[512];
-  if (strlen(base) - 4 >= sizeof name)
-    return sh_error_set(err, SH_ERR_ARG, "the output file name is too long");
-  memcpy(name, base, strlen(base) - 4);
-  name[strlen(base) - 4] = '\0';
+  char *name = se_printf_alloc("%.*s", (int)(strlen(base) - 4), base);
+  if (!name) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  sh_status st = se__pov_build(scene, opt, pov_path, base, name, out, notes,
+                               err);
+  free(name);
+  return st;
+}
+
+static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
+                               const char *pov_path, const char *base,
+                               const char *name, se_output *out,
+                               se_notes *notes, sh_error *err) {
   if (!se_is_plain_file_name(name))
     return sh_error_set(err, SH_ERR_ARG,
                         "the POV-Ray output name '%s' must consist of letters, "
@@ -558,9 +577,11 @@ sh_status se_pov_build(const sh_scene *scene, const se_options *opt,
   size_t dir_len = (size_t)(base - pov_path);
   for (int i = 0; i < scene->nlights; i++) {
     if (!scene->lights[i].has_map) continue;
-    char path[1200];
-    snprintf(path, sizeof path, "%.*s%s_map%d.exr", (int)dir_len, pov_path, name, i);
-    if (!se_output_image(out, path, &scene->lights[i].map)) {
+    char *path = se_printf_alloc("%.*s%s_map%d.exr", (int)dir_len, pov_path,
+                                 name, i);
+    int added = path && se_output_image(out, path, &scene->lights[i].map);
+    free(path);
+    if (!added) {
       se_buf_free(&body);
       return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
     }

@@ -17,6 +17,7 @@ const se_target se_targets[] = {
      "xvfb-run)"},
     {"json", "json", se_json_build,
      "OUT = FILE.json: the normalised scene (defaults filled in, transforms "
-     "as matrices, files as absolute paths)"},
+     "as matrices, files relative to OUT, copied beside it when outside its "
+     "directory)"},
     {NULL, NULL, NULL, NULL},
 };

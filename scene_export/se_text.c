@@ -1,5 +1,7 @@
 #include "se_text.h"
 
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -50,5 +52,18 @@ char *se_replace_extension(const char *path, const char *suffix) {
   if (!s) return NULL;
   memcpy(s, path, keep);
   strcpy(s + keep, suffix);
+  return s;
+}
+
+char *se_printf_alloc(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (!s) return NULL;
+  va_start(ap, fmt);
+  vsnprintf(s, (size_t)n + 1, fmt, ap);
+  va_end(ap);
   return s;
 }

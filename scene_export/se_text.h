@@ -39,6 +39,14 @@ const char *se_base_name(const char *path);
  * last component), plus `suffix`. NULL if out of memory. */
 char *se_replace_extension(const char *path, const char *suffix);
 
+/* A new string of any length, formatted as printf does (file names are
+ * never cut to a buffer's size). NULL if out of memory. */
+char *se_printf_alloc(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
 #ifdef __cplusplus
 }
 #endif

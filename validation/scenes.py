@@ -2,8 +2,9 @@
 
 A canonical scene is rendered at a size the validation mode chooses, so the
 orchestrator writes a derived copy of it into the cache: the same scene with
-the camera's width and height changed and every file it names made absolute
-(the copy lives in another directory). The copy is identified by a content
+the camera's width and height changed, in a directory of its own beside
+copies of every file it names (a scene names only files in its own tree,
+docs/scene-format.md "Files"). The copy is identified by a content
 key: a hash of the scene file's bytes, of the bytes of every file it
 references (meshes, heightfields, light maps) and of the changes made, so a
 run is redone when any of them changes and never because the tree was
@@ -14,6 +15,7 @@ import hashlib
 import json
 import math
 import os
+import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -59,19 +61,61 @@ def referenced_files(data, base_dir):
     return found
 
 
-def absolutise(data, base_dir):
-    """A copy of the scene with every referenced file name made absolute."""
-    if isinstance(data, dict):
-        out = {}
-        for k, v in data.items():
-            if k in FILE_KEYS and isinstance(v, str):
-                out[k] = str((Path(base_dir) / v).resolve())
-            else:
-                out[k] = absolutise(v, base_dir)
-        return out
-    if isinstance(data, list):
-        return [absolutise(v, base_dir) for v in data]
-    return data
+def mesh_companions(path):
+    """The relative names of the files a mesh names in turn: an OBJ's
+    material libraries, a glTF's buffer and image URIs (not data: URIs)."""
+    try:
+        if path.suffix.lower() == ".obj":
+            return [line.split(None, 1)[1].strip()
+                    for line in path.read_text(errors="replace").splitlines()
+                    if line.startswith("mtllib ") and len(line.split(None, 1)) == 2]
+        if path.suffix.lower() == ".gltf":
+            doc = json.loads(path.read_text())
+            return [x["uri"] for k in ("buffers", "images") for x in doc.get(k, [])
+                    if isinstance(x.get("uri"), str) and not x["uri"].startswith("data:")]
+    except (OSError, ValueError, AttributeError, TypeError):
+        pass
+    return []
+
+
+def _place(src, dest):
+    """Hard-links src to dest (a copy across file systems)."""
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        os.link(src, dest)
+    except OSError:
+        shutil.copyfile(src, dest)
+
+
+def localise(data, base_dir, dest_dir, copy=True):
+    """A copy of the scene whose file names are relative and lie in
+    dest_dir: each referenced file (and the files a mesh names in turn) is
+    linked into dest_dir/f<i>/ (names only, without copy). A missing file
+    keeps a name that does not exist there, so the renderers report it."""
+    count = [0]
+
+    def place(name):
+        src = (Path(base_dir) / name).resolve()
+        sub = Path("f%d" % count[0])
+        count[0] += 1
+        if copy and src.is_file():
+            _place(src, Path(dest_dir) / sub / src.name)
+            for c in mesh_companions(src):
+                csrc = (src.parent / c).resolve()
+                cdest = (Path(dest_dir) / sub / c).resolve()
+                if csrc.is_file() and str(cdest).startswith(str((Path(dest_dir) / sub).resolve()) + os.sep):
+                    _place(csrc, cdest)
+        return str(sub / src.name)
+
+    def walk(node):
+        if isinstance(node, dict):
+            return {k: place(v) if k in FILE_KEYS and isinstance(v, str) else walk(v)
+                    for k, v in node.items()}
+        if isinstance(node, list):
+            return [walk(v) for v in node]
+        return node
+
+    return walk(data)
 
 
 def content_key(scene_bytes, data, base_dir, changes):
@@ -126,12 +170,20 @@ def prepare_data(name, data, base_dir, cache_dir, scene_bytes=None,
     if scene_bytes is None:
         scene_bytes = json.dumps(data, sort_keys=True).encode()
     key = content_key(scene_bytes, data, base_dir, changes)
-    derived = absolutise(data, base_dir)
+    # The derived scene and its files' copies in a directory of their own,
+    # made whole under a temporary name and renamed into place.
+    where = Path(cache_dir) / "scenes" / ("%s-%s" % (name, key[:16]))
+    path = where / ("%s.json" % name)
+    tmp = where.with_name(".%s.tmp%d" % (where.name, os.getpid()))
+    derived = localise(data, base_dir, tmp, copy=not path.exists())
     derived.setdefault("camera", {})
     derived["camera"] = dict(derived["camera"], width=w, height=h)
-    path = Path(cache_dir) / "scenes" / ("%s-%s.json" % (name, key[:16]))
     if not path.exists():
-        write_atomic(path, json.dumps(derived, indent=1) + "\n")
+        write_atomic(tmp / path.name, json.dumps(derived, indent=1) + "\n")
+        try:
+            os.rename(tmp, where)
+        except OSError:  # made meanwhile by another process
+            shutil.rmtree(tmp, ignore_errors=True)
     render = data.get("render", {}) if isinstance(data.get("render"), dict) else {}
     return PreparedScene(
         name=name, source=str(source or name), path=path, key=key,

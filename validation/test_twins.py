@@ -83,9 +83,11 @@ class TwinsTest(unittest.TestCase):
             self.assertEqual((scene.width, scene.height), (own.width, own.height))
             derived = json.loads(scene.path.read_text())
             self.assertEqual(derived["medium"]["phase"]["g"], 0.4)
-            # Its mesh is named by an absolute path, as in the scene's copy.
+            # Its mesh is named relatively, a copy in its own directory.
             meshes = [s["file"] for s in derived["shapes"] if "file" in s]
-            self.assertTrue(meshes and all(Path(m).is_absolute() for m in meshes))
+            self.assertTrue(meshes and all(not Path(m).is_absolute() and
+                                           (scene.path.parent / m).is_file()
+                                           for m in meshes))
             self.assertEqual(data["medium"]["phase"]["type"], "nishita_hazy")
             self.assertIsNone(prepare_twin(Path(d) / "missing.json", d))
 

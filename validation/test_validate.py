@@ -90,7 +90,10 @@ class ScenesTest(unittest.TestCase):
             self.assertNotEqual(c.key, half.key)
             self.assertEqual((half.width, half.height), (20, 15))
             derived = json.loads(half.path.read_text())
-            self.assertTrue(Path(derived["lights"][0]["light_map"]["image"]).is_absolute())
+            # Its files are named relatively, copies in its own directory.
+            image = derived["lights"][0]["light_map"]["image"]
+            self.assertFalse(Path(image).is_absolute())
+            self.assertEqual((half.path.parent / image).read_bytes(), b"two")
 
     def test_scaled_size(self):
         self.assertEqual(scaled_size(320, 240, 0.5), (160, 120))

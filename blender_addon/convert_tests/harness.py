@@ -5,6 +5,7 @@
 Each test module calls check()/near() and finally finish(), which exits 1
 if any check failed (Blender's own exit status is 0 otherwise)."""
 import json
+import shutil
 import math
 import os
 import subprocess
@@ -49,8 +50,9 @@ def has_warning(what, warnings, *words):
 
 
 def scene_copy(path, work, size):
-    """A copy of a scene file in `work` rendered at `size` (w, h), its
-    relative file names made absolute."""
+    """A copy of a scene file in `work` rendered at `size` (w, h), with
+    copies of the files it names beside it (a scene names only files in its
+    own tree)."""
     with open(path) as f:
         scene = json.load(f)
     scene["camera"]["width"], scene["camera"]["height"] = size
@@ -58,8 +60,10 @@ def scene_copy(path, work, size):
     for item in scene.get("shapes", []) + scene.get("lights", []):
         for holder in (item, item.get("light_map", {})):
             for key in ("file", "image"):
-                if key in holder and not os.path.isabs(holder[key]):
-                    holder[key] = os.path.join(base, holder[key])
+                if key in holder:
+                    src = os.path.join(base, holder[key])
+                    holder[key] = os.path.basename(src)
+                    shutil.copyfile(src, os.path.join(work, holder[key]))
     out = os.path.join(work, os.path.basename(path))
     with open(out, "w") as f:
         json.dump(scene, f)

@@ -48,9 +48,9 @@ def _write_atomic(path, data, written):
 
 
 def scene_with_files(export, json_path):
-    """The export's scene with its in-memory meshes and the light maps it
-    holds only in a temporary directory (cards.py) replaced by the file
-    names write_files gives them; {file name: mesh name}; {file name:
+    """The export's scene with its in-memory meshes, the light maps it
+    holds only in a temporary directory (cards.py) and the images it names
+    by absolute paths replaced by the file names write_files gives them; {file name: mesh name}; {file name:
     temporary image path}."""
     base = os.path.splitext(os.path.basename(json_path))[0]
     scene = copy.deepcopy(export.scene)
@@ -65,8 +65,11 @@ def scene_with_files(export, json_path):
     images = {}
     for light in scene["lights"]:
         lm = light.get("light_map")
-        if lm is not None and cards.is_cached(lm["image"]):
-            name = "%s_map%d.pfm" % (base, len(images))
+        # A scene file names only files in its own tree: the user's images
+        # are copied beside it too, in their own format.
+        if lm is not None and (cards.is_cached(lm["image"]) or os.path.isabs(lm["image"])):
+            ext = ".pfm" if cards.is_cached(lm["image"]) else os.path.splitext(lm["image"])[1]
+            name = "%s_map%d%s" % (base, len(images), ext)
             images[name] = lm["image"]
             lm["image"] = name
     return scene, {v: k for k, v in names.items()}, images
