@@ -13,11 +13,13 @@ share. Two settings n1 < n2 = r n1 of the same series give
     noise^2 = (e1^2 - e2^2) / (r - 1),   bias^2 = e2^2 - noise^2
 
 (each clamped at 0), and the verdict at n2 is *noise* when noise >= bias,
-*bias* otherwise. A deterministic renderer (gl_shafts without jitter,
-POV-Ray's media with jitter 0, EEVEE) has no noise: its whole error is
-bias, which either still falls with its setting (discretisation: more
-planes, intervals or samples remove it) or has stopped falling (a floor:
-less than FLOOR_FALL of it went at the last step). An error of exactly 0 is
+*bias* otherwise. Where a light is in view, the errors are those away
+from it (the report's second figure), whose noise is not heavy-tailed. A
+deterministic renderer (gl_shafts without jitter, POV-Ray's media with
+jitter 0, EEVEE) has no noise: its whole error is bias, which either still
+falls with its setting (discretisation: more planes, intervals or samples
+remove it) or has stopped falling (a floor: less than FLOOR_FALL of it
+went at the last step). An error of exactly 0 is
 *exact*. The reference's own noise (about a quarter of the self-check) is
 part of every b; it is far below the errors classified here.
 
@@ -138,22 +140,22 @@ def split(e1, e2, r):
     return bias2 ** 0.5, min(noise2, e2 * e2) ** 0.5
 
 
-def classify_runs(renderer, runs):
-    """The verdict on one renderer's runs (dicts with params and metrics):
-    a dict with kind ("exact", "noise", "bias" or "unknown"), error, bias,
-    noise, whether the error still falls with the setting, and the basis
-    (the two settings compared); None when there is no series."""
+def classify_runs(renderer, runs, metrics="metrics"):
+    """The verdict on one renderer's runs (dicts with params and the figures
+    under the key `metrics`): a dict with kind ("exact", "noise", "bias" or
+    "unknown"), error, bias, noise, whether the error still falls with the
+    setting, and the basis (the two settings compared); None when there is
+    no series."""
     if renderer not in SERIES:
         return None
     member, count, random, axis = SERIES[renderer]
-    pts = sorted((count(r["params"]), r["metrics"]["rel_rms"]) for r in runs
-                 if r.get("metrics") and r["metrics"].get("rel_rms") is not None
-                 and member(r["params"]))
+    measured = [r for r in runs if r.get(metrics) and r[metrics].get("rel_rms") is not None]
+    pts = sorted((count(r["params"]), r[metrics]["rel_rms"]) for r in measured
+                 if member(r["params"]))
     if not pts and not random:
         # No sweep (a scene without a medium): the renderer's one run, all
         # of whose error is bias.
-        pts = sorted((0, r["metrics"]["rel_rms"]) for r in runs
-                     if r.get("metrics") and r["metrics"].get("rel_rms") is not None)[:1]
+        pts = sorted((0, r[metrics]["rel_rms"]) for r in measured)[:1]
     if not pts:
         return None
     n2, e2 = pts[-1]
@@ -183,11 +185,19 @@ def classify(entry, data, twin=None):
     the scene's dict `data` and, when it has one, its twin's entry; the
     verdicts with bias carry a note naming the cause."""
     feats = features(data)
+    # With a light in view, the errors away from it: next to the light the
+    # radiance is unbounded and Monte Carlo noise there is heavy-tailed (a
+    # few fireflies), so it does not fall as 1/sqrt(n) over a sweep's few
+    # sample counts and would pass for bias.
+    metrics = ("metrics_masked" if any(r.get("metrics_masked") for r in entry.get("runs", []))
+               else "metrics")
     out = {}
     for renderer in dict.fromkeys(r["renderer"] for r in entry.get("runs", [])):
-        v = classify_runs(renderer, [r for r in entry["runs"] if r["renderer"] == renderer])
+        v = classify_runs(renderer, [r for r in entry["runs"] if r["renderer"] == renderer],
+                          metrics)
         if v is None:
             continue
+        v["away_from_lights"] = metrics == "metrics_masked"
         if v["kind"] == "bias" or (v["bias"] or 0) >= NOTE_BIAS:
             known = causes(renderer, feats)
             if v["falls"] and not SERIES[renderer][2]:
