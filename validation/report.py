@@ -447,7 +447,12 @@ def summary_markdown(results):
             "The least measured time among a renderer's settings whose relative RMS error "
             "over the lit region is at most the level. Where a light is in view, the "
             "figures in brackets leave out the pixels next to it (a square of 5% of the "
-            "image height), where the radiance grows without bound.", "",
+            "image height), where the radiance grows without bound. *Error is*: whether "
+            "the renderer's remaining error is bias (more samples do not remove it) or "
+            "noise, from how it falls over the sweep (the bracketed figures where a light "
+            "is in view); a row with bias names its cause (docs/validation.md, \"Bias or "
+            "noise\"). A scene's twin (NAME-hg, -lambert) is the scene with the phase and "
+            "highlights Cycles and EEVEE represent exactly.", "",
             "| scene | size | renderer | 1% | 2% | 5% | least error (time) | error is |",
             "|---|---|---|---:|---:|---:|---:|---|"]
     for s in results["scenes"]:
