@@ -178,6 +178,10 @@ class VerdictsTest(unittest.TestCase):
         plain = {"camera": data["camera"], "lights": [], "materials": {}}
         self.assertEqual(verdicts.classify(entry, plain)["cycles"]["note"],
                          "cause not identified")
+        # With surfaces and nothing approximated: the edge pixels.
+        lambert = dict(plain, lights=data["lights"], shapes=data["shapes"])
+        self.assertEqual(verdicts.classify(entry, lambert)["cycles"]["note"],
+                         verdicts.FALLBACK["cycles"])
 
     def test_light_in_view_judged_away_from_it(self):
         # Cycles on teapot_spot's twin at 80x60 (quick): fireflies next to
