@@ -4,6 +4,7 @@
 #define SH_TEST_H
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,8 +12,14 @@
 #include "sh_error.h"
 #include "sh_parse.h"
 
-static int sh_test_failures = 0;
-static int sh_test_checks = 0;
+/* Unused in a test that only borrows the helpers below. */
+#if defined(__GNUC__)
+#define SH_TEST__UNUSED __attribute__((unused))
+#else
+#define SH_TEST__UNUSED
+#endif
+static int sh_test_failures SH_TEST__UNUSED = 0;
+static int sh_test_checks SH_TEST__UNUSED = 0;
 
 #define SH_CHECK(cond)                                                      \
   do {                                                                      \
@@ -66,6 +73,32 @@ static inline sh_scene *sh_test_parse(const char *json, const char *name) {
     char buf[2048];
     sh_error_format(&err, buf, sizeof buf);
     fprintf(stderr, "parse failed: %s\n", buf);
+  }
+  return s;
+}
+
+/* Loads the scene file at a path in the source tree ($SHAFTS_SOURCE_DIR,
+ * else ../.., the tree seen from a test's build directory), given as a
+ * printf format: sh_test_load("scenes/%s.json", name). Returns the scene,
+ * or NULL after printing the located error. */
+static inline sh_scene *sh_test_load(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+static inline sh_scene *sh_test_load(const char *fmt, ...) {
+  const char *src = getenv("SHAFTS_SOURCE_DIR");
+  char rel[512], path[1024], buf[2048];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(rel, sizeof rel, fmt, ap);
+  va_end(ap);
+  snprintf(path, sizeof path, "%s/%s", src ? src : "../..", rel);
+  sh_scene *s = NULL;
+  sh_error err;
+  if (sh_scene_load(path, &s, &err) != SH_OK) {
+    sh_error_format(&err, buf, sizeof buf);
+    fprintf(stderr, "%s\n", buf);
   }
   return s;
 }

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "sh_parse.h"
+#include "sh_test.h"
 #include "test_util.h"
 
 
@@ -25,15 +26,8 @@ static sh_status render(const sh_scene *scene, gs_backend b, sh_image *out,
 
 /* A canonical scene (scenes/FILE) at 160x120. */
 static sh_scene *small(const char *file) {
-  const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char path[1024];
-  snprintf(path, sizeof path, "%s/scenes/%s", src ? src : "../..", file);
-  sh_scene *s = NULL;
-  sh_error err;
-  if (sh_scene_load(path, &s, &err) != SH_OK) {
-    fprintf(stderr, "%s: %s\n", path, err.message);
-    return NULL;
-  }
+  sh_scene *s = sh_test_load("scenes/%s", file);
+  if (!s) return NULL;
   s->camera.width = 160;
   s->camera.height = 120;
   return s;

@@ -31,18 +31,7 @@ static const char *const BLACK[] = {
     "spot_blocked_near", "light_in_box",       "light_in_quads"};
 
 static sh_scene *load(const char *name) {
-  const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char path[1024];
-  snprintf(path, sizeof path, "%s/testdata/hard_cases/%s.json", src ? src : "../..", name);
-  sh_scene *s = NULL;
-  sh_error err;
-  if (sh_scene_load(path, &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
-    return NULL;
-  }
-  return s;
+  return sh_test_load("testdata/hard_cases/%s.json", name);
 }
 
 /* Counts the pixels above 0 and finds the largest value. */

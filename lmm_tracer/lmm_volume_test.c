@@ -22,20 +22,13 @@ static const char *const BLACK[] = {
     "closed_room_sun_grazing", "closed_room_far", "spot_blocked",
     "spot_blocked_near", "light_in_box",       "light_in_quads"};
 
+/* A case at 64x48. */
 static sh_scene *load(const char *name) {
-  const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char path[1024];
-  snprintf(path, sizeof path, "%s/testdata/hard_cases/%s.json", src ? src : "../..", name);
-  sh_scene *s = NULL;
-  sh_error err;
-  if (sh_scene_load(path, &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
-    return NULL;
+  sh_scene *s = sh_test_load("testdata/hard_cases/%s.json", name);
+  if (s) {
+    s->camera.width = 64;
+    s->camera.height = 48;
   }
-  s->camera.width = 64;
-  s->camera.height = 48;
   return s;
 }
 
