@@ -183,6 +183,31 @@ class VerdictsTest(unittest.TestCase):
         self.assertEqual(verdicts.classify(entry, lambert)["cycles"]["note"],
                          verdicts.FALLBACK["cycles"])
 
+    def test_reference_noise_and_least_bias(self):
+        # mountains_sun in the full run of 76a206e: lmm_tracer's reference
+        # mode at 128 and 256 spp is 0.2% and 0.099% from the reference at
+        # 4096 (stratified: the error falls as 1/spp), so the reference's
+        # own noise is 0.099% / 16; gl_shafts' 0.054% floor is its own.
+        data = json.loads((SCENES / "mountains_sun.json").read_text())
+        lmm = [run("lmm_tracer", {"mode": "reference", "spp": 128}, 0.002),
+               run("lmm_tracer", {"mode": "reference", "spp": 256}, 0.00099)]
+        entry = {"runs": lmm + [run("gl_shafts", {"planes": 400, "xi": "exact"}, 0.00063),
+                                run("gl_shafts", {"planes": 800, "xi": "exact"}, 0.00054)]}
+        self.assertAlmostEqual(verdicts.reference_noise(entry, 4096), 0.00099 / 16, places=6)
+        self.assertIsNone(verdicts.reference_noise({"runs": []}, 4096))
+        v = verdicts.classify(entry, data, ref_spp=4096)["gl_shafts"]
+        self.assertEqual(v["note"], "shadow-map edges")
+        # Plain Monte Carlo (or a single run): 1/sqrt(spp), the larger.
+        lmm[0]["metrics"]["rel_rms"] = 0.0014
+        self.assertAlmostEqual(verdicts.reference_noise(entry, 4096), 0.00099 / 4, places=6)
+        lmm[1]["metrics"]["rel_rms"] = 0.0012
+        v = verdicts.classify(entry, data, ref_spp=4096)["gl_shafts"]
+        self.assertTrue(v["note"].startswith("the reference's own noise"))
+        # POV-Ray's total internal reflection explains 2.4%, not 0.02%.
+        self.assertEqual(verdicts.causes("povray", {"transmit"}, 0.024),
+                         ["total internal reflection in the glass"])
+        self.assertEqual(verdicts.causes("povray", {"transmit"}, 0.0002), [])
+
     def test_light_in_view_judged_away_from_it(self):
         # Cycles on teapot_spot's twin at 80x60 (quick): fireflies next to
         # the light keep the whole image's error from falling as noise

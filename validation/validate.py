@@ -165,7 +165,8 @@ class Validation:
                     entry["reference"]["image"], lit=LIT)["rel_rms"]
             except CompareFailed:
                 pass
-            original["verdicts"] = verdicts.classify(original, data, twin=entry)
+            original["verdicts"] = verdicts.classify(original, data, twin=entry,
+                                                     ref_spp=self.ref_spp)
         return entry
 
     def measure(self, scene, adapters):
@@ -234,7 +235,7 @@ class Validation:
             self._summarise(entry, "metrics_masked", "time_to_masked", "plot_masked",
                             ", away from the lights in view")
         self._self_check(entry)
-        entry["verdicts"] = verdicts.classify(entry, scene.data)
+        entry["verdicts"] = verdicts.classify(entry, scene.data, ref_spp=self.ref_spp)
         return entry
 
     def _summarise(self, entry, metrics, time_key, plot_key, what):

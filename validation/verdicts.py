@@ -29,6 +29,8 @@ renderer and scene feature, each backed by a measurement (docs/validation.md,
 renderer's verdict on the twin, which lacks the approximated features.
 """
 
+import math
+
 from .metrics import fmt_percent
 from .scenes import light_mask
 from .twins import has_phong
@@ -38,6 +40,9 @@ from .twins import has_phong
 FLOOR_FALL = 0.2
 # A noise verdict whose bias is at least this also names the bias's cause.
 NOTE_BIAS = 0.01
+# A bias at most this many times the reference's own noise cannot be told
+# from it.
+REF_NOISE_FACTOR = 2.0
 
 
 def _eevee_count(p):
@@ -95,9 +100,10 @@ def features(data):
     return out
 
 
-# The known causes of bias: (renderers, feature, short note). Each is
-# backed by a measurement in docs/validation.md ("Bias or noise"). The
-# first matching entries name a row's cause.
+# The known causes of bias: (renderers, feature, short note[, the least
+# bias the cause explains]). Each is backed by a measurement in
+# docs/validation.md ("Bias or noise"). Every matching entry names a row's
+# cause.
 CAUSES = [
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:nishita_hazy",
      "Nishita hazy phase exported as one HG lobe, g 0.4"),
@@ -117,7 +123,7 @@ CAUSES = [
     (("gl_shafts", "addon_sweep"), "transmit",
      "reflecting and transmitting materials drawn opaque"),
     (("gl_shafts", "addon_sweep"), "shadows", "shadow-map edges"),
-    (("povray",), "transmit", "total internal reflection in the glass"),
+    (("povray",), "transmit", "total internal reflection in the glass", 0.001),
     (("cycles",), "transmit", "glass: Cycles' own refraction and caustics differ"),
 ]
 
@@ -134,12 +140,13 @@ FALLBACK = {"cycles": "edge pixels and tessellated curved shapes",
             "povray": "half-float EXR output"}
 
 
-def causes(renderer, feats):
-    """The notes of the known causes of bias that apply to `renderer` on a
+def causes(renderer, feats, bias=1.0):
+    """The notes of the known causes of a bias that apply to `renderer` on a
     scene with features `feats`, without repeats."""
     out = []
-    for names, feature, note in CAUSES:
-        if renderer in names and feature in feats and note not in out:
+    for names, feature, note, *least in CAUSES:
+        if (renderer in names and feature in feats and note not in out
+                and bias >= (least[0] if least else 0)):
             out.append(note)
     return out
 
@@ -192,10 +199,31 @@ def classify_runs(renderer, runs, metrics="metrics"):
     return out
 
 
-def classify(entry, data, twin=None):
+def reference_noise(entry, ref_spp, metrics="metrics"):
+    """The reference's own noise on a scene entry: the error of lmm_tracer's
+    reference-mode run with the most spp (another seed) carried to the
+    reference's spp at the rate the sweep measures between its two largest
+    spp, error proportional to spp^-p with p between 1/2 (plain Monte
+    Carlo) and 1 (its stratified sampling reaches that); None without
+    such runs."""
+    pts = sorted((r["params"]["spp"], r[metrics]["rel_rms"]) for r in entry.get("runs", [])
+                 if r["renderer"] == "lmm_tracer" and r["params"].get("mode") == "reference"
+                 and r.get(metrics) and r[metrics].get("rel_rms"))
+    if not pts or not ref_spp:
+        return None
+    n2, e2 = pts[-1]
+    rate = 0.5
+    if len(pts) > 1 and pts[-2][0] < n2:
+        n1, e1 = pts[-2]
+        rate = min(1.0, max(0.5, math.log(e1 / e2) / math.log(n2 / float(n1))))
+    return e2 * (n2 / float(ref_spp)) ** rate
+
+
+def classify(entry, data, twin=None, ref_spp=None):
     """Every renderer's verdict on a scene entry of the results (its runs),
-    the scene's dict `data` and, when it has one, its twin's entry; the
-    verdicts with bias carry a note naming the cause."""
+    the scene's dict `data`, when it has one its twin's entry, and the
+    reference's spp (for its noise); the verdicts with bias carry a note
+    naming the cause."""
     feats = features(data)
     # With a light in view, the errors away from it: next to the light the
     # radiance is unbounded and Monte Carlo noise there is heavy-tailed (a
@@ -203,6 +231,7 @@ def classify(entry, data, twin=None):
     # sample counts and would pass for bias.
     metrics = ("metrics_masked" if any(r.get("metrics_masked") for r in entry.get("runs", []))
                else "metrics")
+    ref_noise = reference_noise(entry, ref_spp, metrics)
     out = {}
     for renderer in dict.fromkeys(r["renderer"] for r in entry.get("runs", [])):
         v = classify_runs(renderer, [r for r in entry["runs"] if r["renderer"] == renderer],
@@ -211,8 +240,11 @@ def classify(entry, data, twin=None):
             continue
         v["away_from_lights"] = metrics == "metrics_masked"
         if v["kind"] == "bias" or (v["bias"] or 0) >= NOTE_BIAS:
-            known = causes(renderer, feats)
-            if v["falls"] and not SERIES[renderer][2]:
+            known = causes(renderer, feats, v["bias"])
+            if ref_noise is not None and v["bias"] <= REF_NOISE_FACTOR * ref_noise:
+                # Too small to tell from the reference's own noise.
+                known = ["the reference's own noise (%s)" % fmt_percent(ref_noise)]
+            elif v["falls"] and not SERIES[renderer][2]:
                 # A deterministic error still falling: the setting's
                 # discretisation, which more of it removes.
                 known = ["discretisation: falls with more %s" % SERIES[renderer][3]]
