@@ -2,14 +2,14 @@
 
 #include <math.h>
 
-void se_bounding_sphere(const sh_scene *scene, sh_vec3 *center,
-                        double *radius) {
+void se_content_sphere(const sh_scene *scene, sh_vec3 *center,
+                       double *radius) {
   sh_vec3 lo, hi;
   sh_scene_bounds(scene, &lo, &hi);
-  lo = sh_vmin(lo, scene->camera.position);
-  hi = sh_vmax(hi, scene->camera.position);
   *center = sh_scale(sh_add(lo, hi), 0.5);
-  *radius = fmax(0.5 * sh_length(sh_sub(hi, lo)), 1e-3);
+  *radius = 0.5 * sh_length(sh_sub(hi, lo));
+  if (!(*radius > 0)) *radius = sh_length(sh_sub(scene->camera.position, *center));
+  if (!(*radius > 0)) *radius = 1.0;
 }
 
 int se_in_box(sh_vec3 p, sh_vec3 bmin, sh_vec3 bmax) {

@@ -24,9 +24,13 @@
 extern "C" {
 #endif
 
-/* A sphere holding every shape, light position, the medium's bounds and
- * the camera's position. The radius is at least 1e-3. */
-void se_bounding_sphere(const sh_scene *scene, sh_vec3 *center, double *radius);
+/* A sphere holding the scene's content: every shape, light position and
+ * the medium's bounds (sh_scene_bounds), not the camera, which may be far
+ * away: the exporters' tolerances, cards and scales follow the content's
+ * size (relative to a sphere that held a camera 5000 units away, they
+ * swamped a scene 3.5 across). A content of no size gets the camera's
+ * distance, or 1. */
+void se_content_sphere(const sh_scene *scene, sh_vec3 *center, double *radius);
 
 /* 1 if p lies inside the box [bmin, bmax] (boundary included). */
 int se_in_box(sh_vec3 p, sh_vec3 bmin, sh_vec3 bmax);

@@ -494,12 +494,8 @@ static void ini(se_buf *b, const char *name, const sh_scene *s) {
  * longer negligible, and a note says so. */
 static void choose_frame(pov *p) {
   const sh_scene *s = p->scene;
-  sh_vec3 lo, hi;
-  sh_scene_bounds(s, &lo, &hi);
-  p->center = sh_scale(sh_add(lo, hi), 0.5);
-  p->radius = 0.5 * sh_length(sh_sub(hi, lo));
+  se_content_sphere(s, &p->center, &p->radius);
   double reach = sh_length(sh_sub(s->camera.position, p->center));
-  if (!(p->radius > 0)) p->radius = reach > 0 ? reach : 1.0;
   double scale = pow(10.0, round(log10(300.0 / p->radius)));
   if (reach * scale > 1e6) scale = pow(10.0, floor(log10(1e6 / reach)));
   if (p->radius * scale < 3.0)
