@@ -18,25 +18,29 @@ vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
   return v * light_pattern(p);
 }
 
-// A directional light's visibility at view depth z, and over [a, b] with
-// its edge found by bisection where the ends differ (as for point lights).
+// A directional light's visibility at view depth z.
 float vis_dir(float z, vec3 d) { return shadow_volume(shadow_at(u_eye + z * d, VOLUME_MARGIN)); }
 
-float vis_part(float a, float b, float mid, vec3 d) {
+// Its visibility over the step [a, b] of a part, whose start sees v0 (set
+// to what b sees, for the next step): where the ends differ, the step holds
+// a shadow's edge, found by bisection (as for point lights), and the
+// visibility is the fraction on each side; elsewhere the ends' mean. The
+// bisection is a loop of 0 turns where the ends agree, not an if: llvmpipe
+// runs both sides of a branch in every lane, but leaves a loop once no lane
+// is in it.
+float vis_step(float a, float b, vec3 d, inout float v0) {
 #if SHADOW != GS_SHADOW_NONE
-  float v0 = vis_dir(a, d), v1 = vis_dir(b, d);
-  float v = 0.5 * (v0 + v1);
-  if (abs(v1 - v0) > 0.5) {
-    float l = a, r = b;
-    for (int j = 0; j < EDGE_STEPS; j++) {
-      float m = 0.5 * (l + r);
-      if ((vis_dir(m, d) > 0.5) == (v0 > 0.5)) l = m; else r = m;
-    }
-    v = mix(v1, v0, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
+  float va = v0, v1 = vis_dir(b, d);
+  v0 = v1;
+  float l = a, r = b;
+  int edge_steps = abs(v1 - va) > 0.5 ? EDGE_STEPS : 0;
+  for (int j = 0; j < edge_steps; j++) {
+    float m = 0.5 * (l + r);
+    if ((vis_dir(m, d) > 0.5) == (va > 0.5)) l = m; else r = m;
   }
-  return v;
+  return mix(v1, va, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
 #else
-  return vis_dir(mid, d);
+  return 1.0;
 #endif
 }
 
@@ -62,15 +66,15 @@ void main() {
 #endif
   int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
   vec3 sum = vec3(0.0);
-  float w = (hi - lo) / float(n);
+  float w = (hi - lo) / float(n), v0 = vis_dir(lo, d);
   for (int i = 0; i < n; i++) {
     float a = lo + float(i) * w, z = a + u * w;
-    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_part(a, a + w, z, d);
+    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_step(a, a + w, d, v0);
   }
   sum *= 1.0 / float(n);
 #else
-  float z = mix(lo, hi, u);
-  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_part(lo, hi, z, d);
+  float z = mix(lo, hi, u), v0 = vis_dir(lo, d);
+  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_step(lo, hi, d, v0);
 #endif
   o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
 }

@@ -161,28 +161,33 @@ void main() {
 #if SHADOW != GS_SHADOW_NONE
     // Visibility: where it changes between a step's ends, the step holds a
     // shadow's edge: bisection finds it, and the step's visibility is the
-    // fraction on each side; elsewhere it is sampled with the rest.
+    // fraction on each side; elsewhere it is sampled with the rest. The
+    // normalised sum of two unit vectors halves their angle exactly, so the
+    // edge's place as a fraction of the step is followed alongside ([fl, fr]),
+    // and a step without an edge takes the middle, the ends' mean. The
+    // bisection is a loop of 0 turns where the ends agree rather than an
+    // if: llvmpipe runs both sides of a branch in every lane, but leaves a
+    // loop once no lane is in it.
     float ec = bc * cs - bs * ss, es = bs * cs + bc * ss;
     float v1 = vis_at(ec, es);
-    float vis = 0.5 * (v0 + v1);
-    if (abs(v1 - v0) > 0.5) {
-      float lc = bc, lsn = bs, rc = ec, rsn = es;
-      for (int j = 0; j < EDGE_STEPS; j++) {
-        float mc = lc + rc, ms = lsn + rsn, mi = inversesqrt(mc * mc + ms * ms);
-        mc *= mi;
-        ms *= mi;
-        if ((vis_at(mc, ms) > 0.5) == (v0 > 0.5)) {
-          lc = mc;
-          lsn = ms;
-        } else {
-          rc = mc;
-          rsn = ms;
-        }
+    float lc = bc, lsn = bs, rc = ec, rsn = es, fl = 0.0, fr = 1.0;
+    int edge_steps = abs(v1 - v0) > 0.5 ? EDGE_STEPS : 0;
+    for (int j = 0; j < edge_steps; j++) {
+      float mc = lc + rc, ms = lsn + rsn, mi = inversesqrt(mc * mc + ms * ms);
+      mc *= mi;
+      ms *= mi;
+      float fm = 0.5 * (fl + fr);
+      if ((vis_at(mc, ms) > 0.5) == (v0 > 0.5)) {
+        lc = mc;
+        lsn = ms;
+        fl = fm;
+      } else {
+        rc = mc;
+        rsn = ms;
+        fr = fm;
       }
-      float mc = lc + rc, ms = lsn + rsn;
-      float fe = atan(bc * ms - bs * mc, bc * mc + bs * ms) / step;
-      vis = mix(v1, v0, clamp(fe, 0.0, 1.0));
     }
+    float vis = mix(v1, v0, 0.5 * (fl + fr));
     sum += sample_at(c, s) * vis;
     v0 = v1;
     bc = ec;
