@@ -77,12 +77,14 @@ typedef struct gs_options {
                                takes one sample per this angle (degrees)
                                its part of the ray subtends at the light,
                                so rays passing near a light are sampled
-                               finely (at most 64 samples); (0, 30] */
+                               finely (at most 1024 samples a fragment
+                               of a point or spot light, 64 of a
+                               directional light); (0, 30] */
   double sub_texels;        /* lights with a map (a spot's gobo, a
                                directional light's window): a plane's
                                fragment takes one sample per this many
                                texels of the map its part of the ray
-                               crosses (at most 64 samples) */
+                               crosses (capped as for sub_angle_deg) */
   sh_crop crop;             /* the pixels to draw (sh_camera.h): an
                                off-axis part of the camera's frustum at the
                                whole image's resolution; all zero: the whole
@@ -108,10 +110,11 @@ typedef struct gs_options {
 } gs_options;
 
 /* The built-in defaults, chosen by measurement (docs/gl_shafts.md). Point
- * and spot lights need few planes, their angular sub-samples doing the
- * rest; directional lights are sampled by the planes. Orthographic shadow
+ * and spot lights need one plane, their angular sub-samples doing the
+ * rest (more planes only add fragments, each with its own set-up);
+ * directional lights are sampled by the planes. Orthographic shadow
  * maps cover more than a spot's cone, so they get more texels. */
-#define GS_DEFAULT_PLANES_LOCAL 4
+#define GS_DEFAULT_PLANES_LOCAL 1
 #define GS_DEFAULT_PLANES_DIRECTIONAL 8
 #define GS_DEFAULT_LATTICE 20
 #define GS_DEFAULT_SHADOW_LOCAL 1024

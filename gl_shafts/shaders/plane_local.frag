@@ -136,7 +136,7 @@ void main() {
   // h (1 + tan^2) times the angle step.
   k = max(k, u_tau_rate * g_h * (1.0 + max(ta * ta, tb * tb)) * dtheta);
 #endif
-  int n = int(clamp(ceil(k), 1.0, 64.0));
+  int n = int(clamp(ceil(k), 1.0, 1024.0));
   float step = dtheta / float(n);
   float x = 0.5 * step, x2 = x * x;
   float tau = x * (1.0 + x2 * (1.0 / 3.0 + x2 * (2.0 / 15.0 + x2 * (17.0 / 315.0))));
