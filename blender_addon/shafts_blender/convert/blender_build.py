@@ -572,6 +572,12 @@ def build_into(scene, collection, data, base_dir, engine):
             light.angle = 0.0
         else:
             light.shadow_soft_size = 0.0
+            # EEVEE's shadow maps start at this distance from the light
+            # (0.05 m by default): a spot's card lies 2e-3 of the scene's
+            # radius in front of it, so the maps must start nearer (the
+            # camera's clip start is 1e-4 of the radius) or the card casts
+            # nothing, light map included.
+            set_if(light, "shadow_buffer_clip_start", 5.0 * cam.clip_start)
         if kind == "SPOT":
             light.spot_size = numbers([item.get("spot_size")], 1, what + ".spot_size")[0]
             light.spot_blend = numbers([item.get("spot_blend")], 1, what + ".spot_blend")[0]
