@@ -529,6 +529,9 @@ class Eevee(_Blender):
     memory_mb = 3072
 
     def work(self, params):
+        if params.get("exported"):
+            # The script's own settings: tile 2 px, 256 slices.
+            return 256 / 8.0 * params["taa"] * 16.0
         return params["samples"] / 8.0 * params["taa"] * (8.0 / params["tile"]) ** 2
 
     def hard_case_settings(self, ctx):
@@ -537,12 +540,16 @@ class Eevee(_Blender):
 
     def render(self, ctx, scene_path, params, work, log):
         _export(ctx, scene_path, "blender", work / "scene.py", log)
+        prefix = ["xvfb-run", "-a", "-s", "-screen 0 640x480x24"]
+        if params.get("exported"):
+            # The exported script's own volumetric settings (docs/
+            # scene_export.md, "EEVEE"), TAA samples from the command line.
+            return self._run_blender(ctx, prefix, "eevee", params["taa"], work, log)
         env = {"SHAFTS_EEVEE_SETTINGS": json.dumps({
             "volumetric_tile_size": str(params["tile"]),
             "volumetric_samples": params["samples"],
             "volumetric_shadow_samples": params["shadow_samples"],
             "taa_render_samples": params["taa"]})}
-        prefix = ["xvfb-run", "-a", "-s", "-screen 0 640x480x24"]
         return self._run_blender(ctx, prefix, "eevee", params["taa"], work, log,
                                  env=env, pre=[EEVEE_SCRIPT])
 
