@@ -14,6 +14,7 @@
 
 #include "sh_file.h"
 #include "sh_json_out.h"
+#include "sh_medium.h"
 #include "sh_parse.h"
 #include "shafts.h"
 
@@ -582,6 +583,13 @@ int sh_cli_load_scene(const char *tool, const char *path, int quiet,
     fprintf(stderr, "%s: warning: the scene has no lights; the image is "
                     "black but for emission, ambient light and background\n",
             tool);
+  int at = sh_scene_camera_at_light(*scene);
+  if (at >= 0 && !quiet)
+    fprintf(stderr,
+            "%s: warning: the camera is at lights[%d] inside the medium, where the "
+            "scattered radiance is unbounded; rays are taken to pass no nearer "
+            "than %.3g to a light (docs/scene-format.md)\n",
+            tool, at, sh_medium_light_min_distance(&(*scene)->medium));
   return SH_EXIT_OK;
 }
 

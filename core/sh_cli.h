@@ -260,7 +260,8 @@ int sh_cli_check_output(const char *tool, const char *option,
 /* Loads a scene for a tool: prints the located error and returns its exit
  * status (a missing or unreadable scene or mesh file is bad input, 2), or
  * returns 0 with *scene set. Warns (unless quiet) when the scene has no
- * lights. */
+ * lights, and when the camera is at a light inside the medium (the
+ * convention of sh_medium_light_min_distance makes its radiance finite). */
 int sh_cli_load_scene(const char *tool, const char *path, int quiet,
                       sh_scene **scene);
 

@@ -131,12 +131,16 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
   } else {
     /* Equiangular sampling (Kulla and Fajardo 2012): density proportional
      * to 1/r^2 along the ray. */
+    /* h at least the light's minimal distance (sh_medium.h): the density
+     * is then proportional to 1/r_eff^2, r_eff^2 = (t - bt)^2 + h^2, and
+     * the weight r^2 (tb - ta) / h below turns each sample's 1/r^2 into
+     * the convention's 1/r_eff^2 (f / pdf = the rest * (tb - ta) / h). */
     double bt = sh_dot(sh_sub(l->position, o), d);
     double h = sh_length(sh_sub(sh_madd(o, d, bt), l->position));
     /* A ray through the light: a floor relative to the lengths at hand
      * (an absolute one would swamp a scene a billionth of a unit across). */
     double span = isfinite(b - a) ? b - a : fabs(a);
-    h = fmax(h, 1e-9 * (fabs(bt) + span));
+    h = fmax(fmax(h, sh_medium_light_min_distance(m)), 1e-9 * (fabs(bt) + span));
     if (!(h > 0)) return sum;
     double ta = atan2(a - bt, h), tb = atan2(b - bt, h);
     for (int i = 0; i < n; i++) {

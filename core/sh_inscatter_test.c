@@ -133,5 +133,35 @@ int main(void) {
       SH_CHECK_NEAR(sh_vget(est, k), closed, 1e-3, 0);
     }
   }
+
+  /* 5. The camera at a point light (issue 11): the ray passes through the
+   * light, where the integral of 1/r^2 diverges. By the convention
+   * (sh_medium_light_min_distance: 1e-4 of the box's diagonal) it is
+   * sigma_s I / (4 pi r) atan(D / r), finite, and so for rays passing
+   * nearer than r; a ray passing farther is unchanged (case 1). */
+  {
+    double ss = 1e-7;
+    sh_scene s = make_scene(sh_v3s(ss), sh_v3s(0), iso);
+    double r = sh_medium_light_min_distance(&s.medium);
+    SH_CHECK_NEAR(r, 1e-4 * sqrt(3.0) * 200, 1e-12, 0);
+    sh_light l = {0};
+    l.type = SH_LIGHT_POINT;
+    l.position = sh_v3(1, 2, 3);
+    l.intensity = sh_v3s(100);
+    sh_vec3 w = sh_normalize(sh_v3(1, 0.2, 0.1));
+    double D = 9.0;
+    double closed = ss * 100 / (4 * SH_PI * r) * atan(D / r);
+    for (int n = 1; n <= 16; n *= 4) {
+      sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, l.position, w, 0, D, n, &rng,
+                                       NULL, NULL);
+      SH_CHECK(isfinite(est.x));
+      SH_CHECK_NEAR(est.x, closed, 1e-5, 0);
+    }
+    /* A ray passing at r / 2 from the light takes the same. */
+    sh_vec3 side = sh_normalize(sh_cross(w, sh_v3(0, 1, 0)));
+    sh_vec3 o = sh_madd(l.position, side, 0.5 * r);
+    sh_vec3 est = sh_inscatter_light(&s, NULL, NULL, 0, &l, o, w, 0, D, 4, &rng, NULL, NULL);
+    SH_CHECK_NEAR(est.x, closed, 1e-5, 0);
+  }
   SH_TEST_DONE();
 }

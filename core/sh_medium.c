@@ -77,3 +77,22 @@ sh_vec3 sh_medium_tr(const sh_medium *m, double len) {
   if (!m->present || len <= 0) return sh_v3s(1.0);
   return sh_vexp(sh_scale(m->sigma_t, -len));
 }
+
+double sh_medium_light_min_distance(const sh_medium *m) {
+  return m->present ? 1e-4 * sh_length(sh_sub(m->bmax, m->bmin)) : 0.0;
+}
+
+int sh_scene_camera_at_light(const sh_scene *scene) {
+  const sh_medium *m = &scene->medium;
+  if (!m->present || sh_is_black(m->sigma_s)) return -1;
+  double r = sh_medium_light_min_distance(m);
+  for (int i = 0; i < scene->nlights; i++) {
+    const sh_light *l = &scene->lights[i];
+    sh_vec3 p = l->position;
+    if (l->type == SH_LIGHT_DIRECTIONAL || p.x < m->bmin.x || p.x > m->bmax.x ||
+        p.y < m->bmin.y || p.y > m->bmax.y || p.z < m->bmin.z || p.z > m->bmax.z)
+      continue;
+    if (sh_length(sh_sub(p, scene->camera.position)) <= r) return i;
+  }
+  return -1;
+}

@@ -41,6 +41,7 @@ run_bad "--backend vulkan" "$dir/good.json" -o "$dir/x.exr" --backend vulkan
 run_bad "unknown option" "$dir/good.json" -o "$dir/x.exr" --bogus
 run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 bad_scenes_refused "$tool" "$dir/good.json"
+camera_at_light_warns "$tool"
 # A finite double that is no float (a camera 1e39 away) never becomes a
 # shader literal or a uniform: a clear error, not a shader that fails to
 # compile.

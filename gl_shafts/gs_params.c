@@ -2,6 +2,8 @@
 
 #include <stdio.h>
 
+#include "sh_medium.h"
+
 /* The variant's switches. Live programs (not baked) choose the spot
  * profile's edge (hard or smooth) per fragment, so that retuning a cone
  * selects the same program. Two switches that values decide stay, in live
@@ -87,6 +89,7 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   if (!ls) ls = &no_setup;
   const sh_light *l = ls->light;
   gs__param_v3(p, "u_lpos", gs__anchored(view, l->position));
+  gs__param_f(p, "u_light_rmin", sh_medium_light_min_distance(m));
   gs__param_v3(p, "u_ldir", l->direction);
   gs__param_v3(p, "u_lpower",
                l->type == SH_LIGHT_DIRECTIONAL ? l->irradiance : l->intensity);

@@ -17,6 +17,7 @@ basic_scene "$dir/good.json" 16 12 "$POINT_LIGHT"
 "$tool" "$dir/good.json" -o "$dir/x.exr" --bogus >/dev/null 2>&1; check "unknown option" 2 $?
 "$tool" "$dir/good.json" -o "$dir/x.exr" --mode nonsense >/dev/null 2>&1; check "bad mode" 2 $?
 bad_scenes_refused "$tool" "$dir/good.json"
+camera_at_light_warns "$tool"
 
 "$tool" "$dir/good.json" -o "$dir/a.exr" -o "$dir/a.png" --stats "$dir/a.json" \
   --spp 4 -q; check "good render" 0 $?

@@ -155,6 +155,18 @@ huge_refused() { # tool, good scene, sed expression, key (a regex)
   grep -q "huge.json:[0-9]*:[0-9]*: $4" "$dir/err" \
     || { echo "FAIL: huge-value message: $(cat "$dir/err")"; fail=1; }
 }
+# The camera at a point light inside the medium (issue 11): a warning
+# naming the light and the convention's distance, exit 0, finite output.
+camera_at_light_warns() { # tool
+  basic_scene "$dir/at_light.json" 8 6 \
+    '{"type": "point", "position": [0, 1, 2], "intensity": [5, 5, 5]}'
+  sed -i 's/"position": \[0, 1, 5\], "look_at"/"position": [0, 1, 2], "look_at"/' "$dir/at_light.json"
+  "$1" "$dir/at_light.json" -o "$dir/at_light.exr" 2>"$dir/err"
+  check "camera at a light" 0 $?
+  grep -q "warning: the camera is at lights\[0\] inside the medium.*no nearer than 0.0009 " \
+    "$dir/err" || { echo "FAIL: camera-at-light warning: $(cat "$dir/err")"; fail=1; }
+  rm -f "$dir/at_light.json" "$dir/at_light.exr"
+}
 # A misspelled key (with its place and a suggestion), a truncated file and
 # numbers out of range are refused with 2, and nothing is left behind.
 bad_scenes_refused() { # tool, good scene (basic_scene's: the light on line 6)

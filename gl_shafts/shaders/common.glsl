@@ -81,7 +81,8 @@ const float BIG = 3.0e38;
 //   exponent, 1 / tan outer), the spot light map's frame u_map_right, u_map_up, a
 //   window's coordinates s = dot(u_win_s.xyz, p) + u_win_s.w and u_win_t,
 //   the 2D shadow map's lookup u_shadow_mat (world to [0,1]^2 x reversed
-//   depth) and the cube map's near distance u_shadow_near.
+//   depth) and the cube map's near distance u_shadow_near; u_light_rmin, the
+//   nearest a ray is taken to pass to a point or spot light (sh_medium.h).
 layout(binding = GS_UNIT_MAP) uniform sampler2D u_map;
 
 layout(binding = GS_UNIT_SHADOW_2D) uniform sampler2DShadow u_shadow2d;

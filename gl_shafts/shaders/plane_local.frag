@@ -17,7 +17,7 @@
 
 // Per-fragment constants of the angle parametrisation.
 vec3 g_foot, g_e, g_dn;
-float g_h, g_b, g_entry, g_dl;
+float g_h, g_h0, g_b, g_entry, g_dl;
 vec2 g_ndc;
 #if LIGHT_TYPE == GS_LIGHT_SPOT
 float g_ea, g_da; // e . axis, dn . axis
@@ -30,6 +30,15 @@ float g_er, g_dr, g_eu, g_du; // e and dn . the map's right and up
 vec4 g_qf, g_qd; // the shadow lookup of the foot, and of dn
 #endif
 
+// The sine of theta at the true light: k / sqrt(h0^2 + k^2), k the ray
+// length from the foot, which is s where h is the light's true distance
+// from the ray and differs only within u_light_rmin of the light, where h
+// is taken larger (the direction to the light, hence the phase function,
+// is the true one there, as in the reference).
+float scatter_sin(float k, float s) {
+  return g_h0 < g_h ? k * inversesqrt(max(g_h0 * g_h0 + k * k, 1e-30)) : s;
+}
+
 // The integrand but for dt / r^2 and the visibility at the angle
 // (c, s) = (cos, sin) theta.
 vec3 sample_at(float c, float s) {
@@ -37,11 +46,11 @@ vec3 sample_at(float c, float s) {
   vec3 wi = c * g_e - s * g_dn;   // towards the light
 #if XI_EXACT && LIGHT_INSIDE
   float light_len = g_h / c; // r: the light is inside the medium's box
-  vec3 v = u_sigma_s * phase(-s) * atten(light_len + (g_b + k - g_entry));
+  vec3 v = u_sigma_s * phase(-scatter_sin(k, s)) * atten(light_len + (g_b + k - g_entry));
 #elif XI_EXACT
   vec3 p = g_foot + k * g_dn;
   float light_len = min(box_exit(p, wi), g_h / c);
-  vec3 v = u_sigma_s * phase(-s) * atten(light_len + (g_b + k - g_entry));
+  vec3 v = u_sigma_s * phase(-scatter_sin(k, s)) * atten(light_len + (g_b + k - g_entry));
 #else
   vec3 v = xi_lattice(g_ndc, (g_b + k) / g_dl);
 #endif
@@ -78,7 +87,11 @@ float vis_at(float c, float s) {
 
 void main() {
   vec4 iv = texelFetch(u_interval, ivec2(gl_FragCoord.xy), 0);
-  float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
+  // The first plane's part also takes the ray's stretch in front of the
+  // camera's near plane, where the lit volume (and so the slabs) begins:
+  // next to a light that stretch holds much of the light (the camera at a
+  // light lost 6% of it).
+  float lo = v_plane == 0.0 ? iv.x : max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
   if (!(hi > lo)) discard;
   g_ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
   vec3 d = ndc_ray(g_ndc);
@@ -88,10 +101,13 @@ void main() {
   g_b = -dot(q, g_dn);
   g_foot = u_eye + g_b * g_dn;
   vec3 ev = u_lpos - g_foot;
-  // A ray through the light: a floor relative to the ray's lengths (an
+  // At least the light's minimal distance (sh_medium.h): a ray through the
+  // light integrates 1 / ((t - b)^2 + u_light_rmin^2), as in every
+  // renderer; below that, a floor relative to the ray's lengths (an
   // absolute one swamps a scene a billionth of a unit across).
-  g_h = max(length(ev), 1e-6 * (abs(g_b) + hi * g_dl));
-  g_e = ev / g_h;
+  g_h0 = length(ev);
+  g_h = max(g_h0, max(u_light_rmin, 1e-6 * (abs(g_b) + hi * g_dl)));
+  g_e = g_h0 > 0.0 ? ev / g_h0 : vec3(0.0);
   g_entry = iv.z * g_dl;
 #if LIGHT_TYPE == GS_LIGHT_SPOT
   g_ea = dot(g_e, u_ldir);
