@@ -78,19 +78,23 @@ static void clipping(const blend *b, const sh_camera_frame *f, double *start,
 }
 
 /* Blender keeps the scene's units and position (one unit, one metre), and
- * Cycles computes in single precision: measured on the far-camera case
- * (docs/scene_export.md, "Precision"), Cycles holds a scene 7e-5 to 7e4
- * across (scaled by 1e-5 and 1e4: 0.77%, as unscaled) and 1e5 from the
- * origin (0.94%), and fails beyond (black at 1e-7, 114% at 1e5, 7% 1e6
- * from the origin). Outside those limits the export says so. */
-static void precision_note(blend *b) {
+ * Cycles computes in single precision: measured by validation/precision.py
+ * (docs/scene_export.md, "Precision"), Cycles holds the hard cases' base
+ * scene (3.5 units in radius) scaled by 1e-6 to 1e3 (< 0.01% from the
+ * plain image), 1e3 from the origin (0.04%) and the camera 5e4 away
+ * (0.6%); it fails beyond (black at 1e-9, 120% at 1e6, 17% 1e6 from the
+ * origin, 3.8% with the camera 5e5 away). Outside about those limits the
+ * export says so. */
+static void precision_note(blend *b, const sh_camera_frame *f) {
   double r = b->radius, far = sh_length(b->center);
-  if (r < 3e-5 || r > 3e4 || far > 3e4 * r)
+  double cam = sh_length(sh_sub(f->origin, b->center));
+  if (r < 1e-6 || r > 1e5 || far > 1e5 * r || cam > 3e4 * r)
     se_note(b->notes,
-            "the scene is %g units across and %g from the origin: Cycles and "
-            "EEVEE compute in single precision and hold about 7e-5 to 7e4 "
-            "units across and 1e5 from the origin; expect a wrong image.",
-            2.0 * r, far);
+            "the scene is %g units across, %g from the origin and %g from the "
+            "camera: Cycles and EEVEE compute in single precision and hold "
+            "about 1e-6 to 1e5 units in radius, 1e5 radii from the origin and "
+            "3e4 radii from the camera; expect a wrong image.",
+            2.0 * r, far, cam);
 }
 
 static json_t *camera(blend *b) {
@@ -485,7 +489,9 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   blend b = {scene, opt, notes, {0, 0, 0}, 0, name, py_path,
              (int)(base - py_path), out, {0}};
   se_content_sphere(scene, &b.center, &b.radius);
-  precision_note(&b);
+  sh_camera_frame cf;
+  sh_camera_frame_init(&scene->camera, &cf);
+  precision_note(&b, &cf);
 
   json_t *images = json_array(), *cards = json_array(), *lights = json_array();
   json_t *materials = json_array(), *meshes = json_array();

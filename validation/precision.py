@@ -20,9 +20,9 @@ in fog over a floor, a black ball shadowing the shaft; the case of
 - the scene moved by 1e3 ... 1e9 along (1, -1, 1): likewise.
 
 Relative RMS over the lit region (shafts_compare, lit 0.01); 'fail' where a
-renderer exits with an error. Renderers: lmm_tracer's reference and lmm
-modes, gl_shafts, and POV-Ray through scene_export when povray is
-installed.
+renderer exits with an error. Renderers (--renderers): lmm_tracer's
+reference and lmm modes, gl_shafts, POV-Ray and Blender's Cycles (256
+samples, minutes) through scene_export, where installed.
 """
 
 import argparse
@@ -58,9 +58,17 @@ def renderers(build, work):
                         "-o", str(pov_file)], check=True, capture_output=True)
         subprocess.run(["povray", pov_file.with_suffix(".ini").name], cwd=str(out.parent),
                        check=True, capture_output=True)
+    def cycles(scene, out):
+        py = out.with_suffix(".py")
+        subprocess.run([str(build / "scene_export" / "scene_export"), str(scene), "--to",
+                        "blender", "-o", str(py)], check=True, capture_output=True)
+        subprocess.run(["blender", "-b", "-P", str(py), "--", "--engine", "cycles", "--out",
+                        str(out), "--samples", "256"], check=True, capture_output=True)
     out = [("reference", lmm("reference")), ("lmm", lmm("lmm")), ("gl_shafts", gl)]
     if shutil.which("povray"):
         out.append(("povray", pov))
+    if shutil.which("blender"):
+        out.append(("cycles", cycles))
     return out
 
 
@@ -68,13 +76,17 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build-dir", default="build")
     ap.add_argument("--width", type=int, default=48)
+    ap.add_argument("--renderers", default="reference,lmm,gl_shafts,povray",
+                    help="comma-separated, of reference, lmm, gl_shafts, povray and cycles "
+                         "(Blender's Cycles, 256 samples; slow)")
     args = ap.parse_args(argv)
     build = Path(args.build_dir).resolve()
     w, h = args.width, args.width * 3 // 4
     compare = build / "validation" / "shafts_compare"
     with tempfile.TemporaryDirectory(prefix="precision.") as tmp:
         work = Path(tmp)
-        rs = renderers(build, work)
+        wanted = args.renderers.split(",")
+        rs = [(n, fn) for n, fn in renderers(build, work) if n in wanted]
         count = [0]
 
         def render(name, scene, fn):

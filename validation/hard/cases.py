@@ -282,6 +282,17 @@ def _pixel3(w, h):
     return _pixel(w, h, 3)
 
 
+def _scale_case(exponent):
+    """scale_1e<exponent>: the base scene scaled by 10^exponent, whose true
+    image is the base scene's."""
+    s = 10.0 ** exponent
+    return Case("scale_1e%d" % exponent,
+                "the base scene with all lengths times 1e%d, sigma times 1e%d, intensity "
+                "times 1e%d: the same image" % (exponent, -exponent, 2 * exponent),
+                lambda w, h: scaled(base_scene(w, h), s),
+                invariance=(("scale", "base"),), reference_case="base")
+
+
 CASES = [
     Case("base", "the control: a spot through a medium box, a sphere's shadow", base_scene),
     Case("point_light_in_view", "the camera looks straight at a point light inside "
@@ -299,18 +310,7 @@ CASES = [
          "in-scattering alone", _thin),
     Case("planes_2000", "the base scene swept with 2000 planes", base_scene,
          only=("gl_shafts",), extra={"gl_shafts": [("planes 2000", {"planes": 2000})]}),
-    Case("scale_1e-3", "the base scene with all lengths times 1e-3, sigma times 1e3, "
-         "intensity times 1e-6: the same image", lambda w, h: scaled(base_scene(w, h), 1e-3),
-         invariance=(("scale", "base"),), reference_case="base"),
-    Case("scale_1e4", "the base scene with all lengths times 1e4, sigma times 1e-4, "
-         "intensity times 1e8: the same image", lambda w, h: scaled(base_scene(w, h), 1e4),
-         invariance=(("scale", "base"),), reference_case="base"),
-    Case("scale_1e-9", "the base scene with all lengths times 1e-9, sigma times 1e9, "
-         "intensity times 1e-18: the same image", lambda w, h: scaled(base_scene(w, h), 1e-9),
-         invariance=(("scale", "base"),), reference_case="base"),
-    Case("scale_1e9", "the base scene with all lengths times 1e9, sigma times 1e-9, "
-         "intensity times 1e18: the same image", lambda w, h: scaled(base_scene(w, h), 1e9),
-         invariance=(("scale", "base"),), reference_case="base"),
+    *[_scale_case(e) for e in (-3, 4, -9, 9)],
     Case("moved_1e6", "the base scene moved by (1e6, -1e6, 1e6), far from the origin: "
          "the same image", lambda w, h: moved(base_scene(w, h), (1e6, -1e6, 1e6)),
          invariance=(("position", "base"),), reference_case="base"),
