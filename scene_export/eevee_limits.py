@@ -52,7 +52,8 @@ VARIANTS = [
     ("tile 8", {"volumetric_tile_size": "8"}),
     ("128 shadow samples", {"volumetric_shadow_samples": 128}),
 ]
-SCENES = [("eevee_point_hg", True), ("eevee_spot", False), ("sun_window", False)]
+SCENES = [("eevee_point_hg", True), ("eevee_spot", False), ("eevee_gobo", False),
+          ("sun_window", False)]
 
 
 def luminance(path):
