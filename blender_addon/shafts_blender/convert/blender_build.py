@@ -502,6 +502,25 @@ def check_format(data):
         raise DataError("not a scene_export Blender data file (format shafts-blender, version 1)")
 
 
+def shadow_clip_start(position, cards):
+    """Where EEVEE's shadow maps of a point or spot light at `position`
+    begin: Blender's default, 0.05 m, or a quarter of the distance to the
+    nearest card vertex when that is nearer. A spot's card lies 2e-3 of the
+    scene's radius in front of the light, and a card nearer than the start
+    casts nothing, light map included. (Five times the camera's clip start
+    was used before; the clip start now lies just before the scene's
+    content, 1.14 units on lmm_table, so the maps began past the table and
+    its point light cast no shadow: EEVEE 22% off instead of 0.69%.)"""
+    nearest = 0.2
+    for k, card in enumerate(cards):
+        v = numbers(card.get("vertices"), None, "cards[%d].vertices" % k)
+        for i in range(0, len(v) - 2, 3):
+            d = ((v[i] - position[0]) ** 2 + (v[i + 1] - position[1]) ** 2
+                 + (v[i + 2] - position[2]) ** 2) ** 0.5
+            nearest = min(nearest, d)
+    return 0.25 * nearest
+
+
 def build(data, base_dir, opts):
     """The script's scene: factory settings, the data's objects and the
     render settings for opts["engine"]."""
@@ -572,12 +591,9 @@ def build_into(scene, collection, data, base_dir, engine):
             light.angle = 0.0
         else:
             light.shadow_soft_size = 0.0
-            # EEVEE's shadow maps start at this distance from the light
-            # (0.05 m by default): a spot's card lies 2e-3 of the scene's
-            # radius in front of it, so the maps must start nearer (the
-            # camera's clip start is 1e-4 of the radius) or the card casts
-            # nothing, light map included.
-            set_if(light, "shadow_buffer_clip_start", 5.0 * cam.clip_start)
+            set_if(light, "shadow_buffer_clip_start", shadow_clip_start(
+                matrix(item.get("matrix"), what + ".matrix").translation,
+                data.get("cards", [])))
         if kind == "SPOT":
             light.spot_size = numbers([item.get("spot_size")], 1, what + ".spot_size")[0]
             light.spot_blend = numbers([item.get("spot_blend")], 1, what + ".spot_blend")[0]
