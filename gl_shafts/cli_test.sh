@@ -106,6 +106,17 @@ if [ "$backend" = egl ]; then
 fi
 render_cli_common "$tool" "$dir/good.json"
 render_files_distinct "$tool" "$dir/good.json"
+# More lights than gl_shafts renders (GS_MAX_LIGHTS): refused at once with
+# the count and the limit, exit 2; 256 are still accepted by the check.
+python3 - "$dir/good.json" "$dir/many.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["lights"] = [dict(s["lights"][0], intensity=[0.01] * 3) for _ in range(257)]
+json.dump(s, open(sys.argv[2], "w"))
+PY
+timeout 60 "$tool" "$dir/many.json" -o "$dir/m.exr" -q 2>"$dir/err"; check "257 lights" 2 $?
+message_has "257 lights" "$dir/err" "many.json: lights: 257 lights: gl_shafts renders at most 256"
+[ -e "$dir/m.exr" ] && { echo "FAIL: 257 lights wrote an image"; fail=1; }
 # --stats holds numbers: planes and shadow maps by the kinds of light
 # present, when no one number is given.
 sed 's/"render": {"planes": 7, /"render": {/' "$dir/good.json" >"$dir/kinds.json"

@@ -115,6 +115,10 @@ typedef struct gs_options {
  * directional lights are sampled by the planes. Orthographic shadow
  * maps cover more than a spot's cone, so they get more texels. */
 #define GS_DEFAULT_PLANES_LOCAL 1
+/* The most lights gs_renderer_create accepts (SH_ERR_SCENE at the key
+ * "lights" beyond): each light has its own surface pass and plane sweep
+ * and the cost grows faster than the count (docs/gl_shafts.md, "Limits"). */
+#define GS_MAX_LIGHTS 256
 #define GS_DEFAULT_PLANES_DIRECTIONAL 8
 #define GS_DEFAULT_LATTICE 20
 #define GS_DEFAULT_SHADOW_LOCAL 1024
