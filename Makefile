@@ -3,6 +3,8 @@
 #   make test      install what is missing, build with -Werror, run the tests
 #   make addon     build only the Blender add-on, $(BUILD)/shafts_blender.zip
 #   make test-asan the test suite under AddressSanitizer + UBSan
+#   make fuzz      the libFuzzer harnesses (clang), FUZZ_SECONDS each
+#                  (docs/fuzzing.md; CI runs FUZZ_SECONDS=20)
 #   make validate REPORT=DIR       cross-renderer report, quick (minutes)
 #   make validate-full REPORT=DIR  the same, thorough (docs/validation.md)
 BUILD ?= build
@@ -10,9 +12,10 @@ JOBS ?= $(shell nproc)
 SCENE ?= scenes/teapot_spot.json
 OUT ?= out
 REPORT ?= $(BUILD)/validation-report
+FUZZ_SECONDS ?= 600
 VALIDATE_ARGS ?=
 
-.PHONY: all bootstrap build addon run test test-asan validate validate-full clean
+.PHONY: all bootstrap build addon run test test-asan fuzz validate validate-full clean
 
 all: build
 
@@ -39,6 +42,11 @@ test-asan: bootstrap
 	cmake --build $(BUILD)-asan -j $(JOBS)
 	cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
 
+fuzz: bootstrap
+	CC=clang CXX=clang++ cmake -S . -B $(BUILD)-fuzz -DSHAFTS_FUZZ=ON
+	cmake --build $(BUILD)-fuzz -j $(JOBS) --target scene_fuzz mesh_fuzz
+	fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECONDS)
+
 validate: build
 	python3 -m validation.validate --quick --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
 
@@ -46,4 +54,4 @@ validate-full: build
 	python3 -m validation.validate --full --report $(REPORT) --build-dir $(BUILD) $(VALIDATE_ARGS)
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-asan
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-fuzz

@@ -162,8 +162,13 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
   fs.root = root ? root : own_root;
   const struct aiScene *scene = ai->import_file_ex(
       path,
-      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-          aiProcess_PreTransformVertices | aiProcess_SortByPType,
+      /* ValidateDataStructure first: Debian's assimp is built with its
+       * assertions on, and a malformed file (an OFF face with no indices,
+       * found by fuzz/mesh_fuzz) made Triangulate abort the process; the
+       * validation refuses such data with an error instead. */
+      aiProcess_ValidateDataStructure | aiProcess_Triangulate |
+          aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
+          aiProcess_SortByPType,
       &fs.io);
   if (fs.refused[0]) {
     /* Refused whether or not assimp went on without the file. */

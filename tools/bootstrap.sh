@@ -14,13 +14,15 @@ set -eu
 # where there is no GPU), or OSMesa as the fallback (gl_shafts/gs_context.h).
 build_pkgs="build-essential cmake pkg-config libjansson-dev libembree-dev
   libegl-dev libgl-dev libopenexr-dev libpng-dev libopenimageio-dev openimageio-tools libassimp-dev python3 python3-numpy"
+# make fuzz: clang with libFuzzer (Debian's clang carries it).
+fuzz_pkgs="clang"
 gl_pkgs="libegl1 libegl-mesa0 libgl1-mesa-dri libosmesa6"
 peer_pkgs="povray blender xvfb xauth"
 # The validation's Slurm executor and its single-node test cluster
 # (tools/slurm_local.sh): Debian 12's slurm-wlm 22.05 without the GUI.
 slurm_pkgs="slurmctld slurmd slurm-client munge"
 
-want="$build_pkgs $gl_pkgs $peer_pkgs $slurm_pkgs"
+want="$build_pkgs $gl_pkgs $peer_pkgs $slurm_pkgs $fuzz_pkgs"
 for arg in "$@"; do
   case "$arg" in
     --build) want="$build_pkgs" ;;
