@@ -505,7 +505,7 @@ def check_format(data):
 def shadow_clip_start(position, cards):
     """Where EEVEE's shadow maps of a point or spot light at `position`
     begin: Blender's default, 0.05 m, or a quarter of the distance to the
-    nearest card vertex when that is nearer. A spot's card lies 2e-3 of the
+    nearest vertex of the cards this engine gets when that is nearer. A spot's card lies 2e-3 of the
     scene's radius in front of the light, and a card nearer than the start
     casts nothing, light map included. (Five times the camera's clip start
     was used before; the clip start now lies just before the scene's
@@ -593,7 +593,7 @@ def build_into(scene, collection, data, base_dir, engine):
             light.shadow_soft_size = 0.0
             set_if(light, "shadow_buffer_clip_start", shadow_clip_start(
                 matrix(item.get("matrix"), what + ".matrix").translation,
-                data.get("cards", [])))
+                [c for c in data.get("cards", []) if c.get("engine", engine) == engine]))
         if kind == "SPOT":
             light.spot_size = numbers([item.get("spot_size")], 1, what + ".spot_size")[0]
             light.spot_blend = numbers([item.get("spot_blend")], 1, what + ".spot_blend")[0]
