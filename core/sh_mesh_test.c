@@ -19,7 +19,11 @@ static int nwritten = 0;
 /* Writes text to a file in the test's directory and returns its path. */
 static const char *write_file(const char *name, const char *text) {
   char *path = written[nwritten++];
-  snprintf(path, sizeof written[0], "%s/%s", tmpdir, name);
+  int n = snprintf(path, sizeof written[0], "%s/%s", tmpdir, name);
+  if (n < 0 || (size_t)n >= sizeof written[0]) {
+    fprintf(stderr, "sh_mesh_test: the path %s/%s is too long\n", tmpdir, name);
+    exit(1);
+  }
   FILE *f = fopen(path, "wb");
   if (f) {
     fputs(text, f);
