@@ -385,7 +385,7 @@ def _hard_section(hc, results, base):
             stab = checks.get("finite, non-negative")
             err = checks.get("error")
             inv = [k for k in r["checks"] if k["name"].startswith("equals")]
-            other = [k for k in r["checks"] if k["name"] in ("renders", "compares")]
+            other = [k for k in r["checks"] if k["name"] in ("renders", "compares", "input")]
             res = '<span class="ok">pass</span>' if r.get("ok") else '<span class="fail">FAIL</span>'
             out.append("<tr><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td>"
                        "<td class=num>%s</td><td>%s</td><td>%s</td></tr>" % (

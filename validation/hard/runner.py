@@ -44,6 +44,7 @@ from ..runs import LocalExecutor, RunCache, plan_run
 from ..scenes import light_mask, prepare_data
 from .bounds import INVARIANCE_BOUNDS, bound_for, bounds_table, known_issue
 from .cases import CASES
+from .inputs import run_inputs
 
 # Relative file names in a case's scene resolve here.
 VALIDATION = Path(__file__).resolve().parent.parent
@@ -189,6 +190,8 @@ def run_suite(ctx, adapters, cache, scratch, say=print, retry_failed=False,
                         chk["ok"] = True
                         chk["known_failure"] = True
             r["ok"] = all(c["ok"] for c in r["checks"])
+    # Bad input and files (issue 11, kinds 5 to 8): refused as they must be.
+    results["cases"] += run_inputs(ctx, adapters, scratch)
     results["failures"] = failures(results)
     results["known_failures"] = [(c["name"], r["renderer"], r["label"], k["name"], k["known"])
                                  for c in results["cases"] for r in c["renderings"]
@@ -295,6 +298,11 @@ def print_table(results, out=sys.stdout):
         for r in c["renderings"]:
             m = r.get("metrics") or {}
             err = m.get("rel_rms")
+            if r.get("kind") == "input":
+                print("%-22s %-11s %-18s %-4s %s" % (c["name"], r["renderer"], r["label"][:18],
+                                                      "ok" if r.get("ok") else "FAIL",
+                                                      r["checks"][0]["note"][:100]), file=out)
+                continue
             bound = next((k.get("bound") for k in r["checks"] if k["name"] == "error"), None)
             inv = [k for k in r["checks"] if k["name"].startswith("equals")]
             print("%-22s %-11s %-18s %-4s error %-9s bound %-6s %s" % (
