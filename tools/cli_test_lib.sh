@@ -181,6 +181,22 @@ bad_scenes_refused() { # tool, good scene (basic_scene's: the light on line 6)
   huge_refused "$1" "$2" 's/"intensity": \[5, 5, 5\]/"intensity": [1e300, 5, 5]/' 'lights\[0\]\.intensity\[0\]'
   huge_refused "$1" "$2" 's/"sigma_s": \[0.1, 0.1, 0.1\]/"sigma_s": [1.7e308, 0.1, 0.1]/' 'medium\.sigma_s\[0\]'
   huge_refused "$1" "$2" 's/"fov_y_deg": 45/"fov_y_deg": 1e-300/' 'camera\.fov_y_deg'
+  # A mesh file that is missing, outside the scene's directory or named by
+  # an absolute path: 2 (not 1, though the library's status is SH_ERR_IO
+  # for a missing file), the key and what was expected in the message.
+  mkdir -p "$dir/sub"
+  printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$dir/tri.obj"
+  local mesh='{"type": "mesh", "material": "floor", "file": "%s"}'
+  basic_scene "$dir/sub/nomesh.json" 8 6 "$POINT_LIGHT" ", $(printf "$mesh" no_such.obj)"
+  "$1" "$dir/sub/nomesh.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "missing mesh" 2 $?
+  message_has "missing mesh" "$dir/err" "shapes[1].file: cannot open the mesh file 'no_such.obj' (resolved to '$dir/sub/no_such.obj')"
+  basic_scene "$dir/sub/outside.json" 8 6 "$POINT_LIGHT" ", $(printf "$mesh" ../tri.obj)"
+  "$1" "$dir/sub/outside.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "mesh outside the scene's directory" 2 $?
+  message_has "mesh outside the scene's directory" "$dir/err" "outside the scene's directory"
+  basic_scene "$dir/sub/absolute.json" 8 6 "$POINT_LIGHT" ", $(printf "$mesh" "$dir/tri.obj")"
+  "$1" "$dir/sub/absolute.json" -o "$dir/x.exr" -q 2>"$dir/err"; check "absolute mesh name" 2 $?
+  message_has "absolute mesh name" "$dir/err" "shapes[1].file: the file name '$dir/tri.obj' is absolute"
+  rm -rf "$dir/sub" "$dir/tri.obj"
   [ -e "$dir/x.exr" ] && { echo "FAIL: an output was written after an error"; fail=1; }
   ls "$dir" | grep -q tmp && { echo "FAIL: a temporary file was left"; fail=1; }
 }
