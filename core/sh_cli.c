@@ -253,6 +253,30 @@ sh_status sh_cli_apply(const sh_cli_tool *t, const sh_cli_args *args,
 
 /* ---- Parsing ---- */
 
+/* getopt_long takes any unambiguous prefix of a long option ("--wid" for
+ * "--width") and refuses an ambiguous one as it refuses an unknown one. If
+ * TEXT ("--pre" or "--pre=value") is a prefix of several long options,
+ * prints them and returns 1; else returns 0 (README.md, "What every
+ * command line shares"). */
+static int report_ambiguous(const char *tool, const struct option *longs,
+                            const char *text) {
+  if (strncmp(text, "--", 2) != 0 || !text[2]) return 0;
+  size_t n = strcspn(text + 2, "=");
+  int count = 0;
+  for (const struct option *o = longs; o->name; o++)
+    count += !strncmp(o->name, text + 2, n);
+  if (count < 2) return 0;
+  fprintf(stderr, "%s: ambiguous option '%.*s': it could be", tool,
+          (int)n + 2, text);
+  int k = 0;
+  for (const struct option *o = longs; o->name; o++)
+    if (!strncmp(o->name, text + 2, n))
+      fprintf(stderr, "%s--%s", k++ == 0 ? " " : k == count ? " or " : ", ",
+              o->name);
+  fprintf(stderr, " (see --help)\n");
+  return 1;
+}
+
 int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
                  sh_cli_args *args) {
   struct option longs[SH_CLI_MAX_OPTIONS + 3];
@@ -313,7 +337,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
       if (optopt && optopt < 256)
         fprintf(stderr, "%s: unknown option '-%c' (see --help)\n", t->name,
                 optopt);
-      else
+      else if (!report_ambiguous(t->name, longs, text))
         fprintf(stderr, "%s: unknown option '%s' (see --help)\n", t->name,
                 text);
       return SH_EXIT_BAD_INPUT;

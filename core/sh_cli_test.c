@@ -98,6 +98,12 @@ int main(void) {
   SH_CHECK(parse(&v, &a, "in", "--level", "4", NULL) == 2);
   SH_CHECK(parse(&v, &a, "in", "--size", "3", NULL) == 2);
   SH_CHECK(parse(&v, &a, "in", "--bogus", NULL) == 2);
+  /* A long option's unambiguous prefix stands for it, as getopt_long
+   * allows; an ambiguous prefix, refused naming the options it could be, is
+   * checked by the tools' tests (render_cli_common, tools/cli_test_lib.sh). */
+  SH_CHECK(parse(&v, &a, "in", "--fla", "--si", "1", "2", NULL) == -1 &&
+           v.flag == 1 && v.size[1] == 2);
+  SH_CHECK(parse(&v, &a, "in", "--na=k", NULL) == -1 && !strcmp(v.name, "k"));
   SH_CHECK(parse(&v, &a, "in", "--n", NULL) == 2);
   SH_CHECK(parse(&v, &a, "in", "-x", NULL) == 2);
   SH_CHECK(parse(&v, &a, NULL) == 2);

@@ -37,6 +37,10 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   version_ok "$tool"
   "$tool" "$scene" -o "$dir/x.exr" --bogus 2>"$dir/err"; check "unknown option last" 2 $?
   message_has "unknown option last" "$dir/err" "unknown option '--bogus'"
+  # --s begins --stats and at least one more of each renderer's options.
+  "$tool" "$scene" -o "$dir/x.exr" --s 1 2>"$dir/err"; check "ambiguous option" 2 $?
+  message_has "ambiguous option" "$dir/err" "ambiguous option '--s': it could be --"
+  message_has "ambiguous option" "$dir/err" "--stats"
   "$tool" "$scene" -o "$dir/x.exr" --exposure 2>"$dir/err"; check "value missing last" 2 $?
   message_has "value missing last" "$dir/err" "--exposure needs a value"
   "$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 2 $?
@@ -53,6 +57,8 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   message_has "EXR provenance" "$dir/header" "\"$name $("$tool" --version | cut -d' ' -f2)\""
   "$tool" "$scene" -o "$dir/w.exr" -q --width 8 "$@"; check "--width" 0 $?
   iinfo "$dir/w.exr" | grep -Eq "8 x +6," || { echo "FAIL: --width 8: $(iinfo "$dir/w.exr")"; fail=1; }
+  "$tool" "$scene" -o "$dir/w.exr" -q --wid=8 "$@"; check "--wid, a prefix of --width" 0 $?
+  iinfo "$dir/w.exr" | grep -Eq "8 x +6," || { echo "FAIL: --wid=8: $(iinfo "$dir/w.exr")"; fail=1; }
   "$tool" "$scene" -o "$dir/w.exr" -q --width 10 --height 20 "$@"; check "--width --height" 0 $?
   iinfo "$dir/w.exr" | grep -Eq "10 x +20," || { echo "FAIL: --width 10 --height 20: $(iinfo "$dir/w.exr")"; fail=1; }
   # --crop: the region alone, its place in the settings; a crop that is
