@@ -103,10 +103,9 @@ static sh_vec3 scatter_at(const sh_scene *scene, const vis_source *vs,
   *r2 = dist * dist;
   if (sh_is_black(e)) return e;
   const sh_medium *m = &scene->medium;
-  double len = l->type == SH_LIGHT_DIRECTIONAL
-                   ? sh_medium_length_ray(m, x, wi)
-                   : sh_medium_length(m, x, l->position);
-  e = sh_mul(e, sh_medium_tr(m, len));
+  e = sh_mul(e, l->type == SH_LIGHT_DIRECTIONAL
+                    ? sh_medium_transmittance_ray(m, x, wi)
+                    : sh_medium_transmittance(m, x, l->position));
   sh_vec3 vis;
   if (vs->hook && vs->hook->volume &&
       vs->hook->volume(vs->hook->user, vs->thread, x, vs->light, &vis, c)) {
@@ -117,8 +116,8 @@ static sh_vec3 scatter_at(const sh_scene *scene, const vis_source *vs,
     if (sh_is_black(vis)) return vis;
     e = sh_mul(e, vis);
   }
-  double p = sh_phase_eval(&m->phase, sh_dot(wi, d));
-  return sh_scale(sh_mul(e, m->sigma_s), p);
+  double p = sh_phase_eval(sh_medium_phase_at(m, x), sh_dot(wi, d));
+  return sh_scale(sh_mul(e, sh_medium_sigma_s_at(m, x)), p);
 }
 
 sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
@@ -133,24 +132,16 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
   const sh_medium *m = &scene->medium;
   if (samples) *samples += (uint64_t)n;
   if (l->type == SH_LIGHT_DIRECTIONAL) {
-    /* Sample t with density proportional to exp(-k (t - a)), k the mean
-     * extinction: the camera-side transmittance. */
-    double k = (m->sigma_t.x + m->sigma_t.y + m->sigma_t.z) / 3.0;
-    double len = b - a, kl = k * len;
+    /* Sample t by the camera-side transmittance of the mean channel
+     * (sh_medium_sample_distance). */
     for (int i = 0; i < n; i++) {
-      double u = (i + sh_rng_next(rng)) / n, t, inv_pdf;
-      if (kl < 1e-6) {
-        t = a + u * len;
-        inv_pdf = len;
-      } else {
-        double norm = -expm1(-kl); /* 1 - exp(-k len) */
-        t = a - log1p(-u * norm) / k;
-        inv_pdf = norm / (k * exp(-k * (t - a)));
-      }
+      double u = (i + sh_rng_next(rng)) / n, inv_pdf;
+      double t = sh_medium_sample_distance(m, o, d, a, b, u, &inv_pdf);
       double r2;
       sh_vec3 x = sh_madd(o, d, t);
       sh_vec3 s = scatter_at(scene, &vs, l, x, d, c, &r2);
-      sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), inv_pdf));
+      sh_vec3 tr = sh_medium_transmittance_span(m, o, d, t0, t);
+      sum = sh_add(sum, sh_scale(sh_mul(s, tr), inv_pdf));
     }
   } else {
     /* Equiangular sampling (Kulla and Fajardo 2012): density proportional
@@ -175,7 +166,8 @@ sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,
       sh_vec3 x = sh_madd(o, d, t);
       sh_vec3 s = scatter_at(scene, &vs, l, x, d, c, &r2);
       double w = r2 * (tb - ta) / h;
-      sum = sh_add(sum, sh_scale(sh_mul(s, sh_medium_tr(m, t - t0)), w));
+      sh_vec3 tr = sh_medium_transmittance_span(m, o, d, t0, t);
+      sum = sh_add(sum, sh_scale(sh_mul(s, tr), w));
     }
   }
   return sh_scale(sum, 1.0 / n);

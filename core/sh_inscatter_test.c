@@ -32,7 +32,8 @@ static sh_vec3 quadrature(const sh_scene *s, const sh_light *l, sh_vec3 o,
     double len = l->type == SH_LIGHT_DIRECTIONAL
                      ? sh_medium_length_ray(&s->medium, x, wi)
                      : sh_medium_length(&s->medium, x, l->position);
-    e = sh_mul(e, sh_medium_tr(&s->medium, len + (t - t0)));
+    /* Homogeneous: exp(-sigma_t length), computed here independently. */
+    e = sh_mul(e, sh_vexp(sh_scale(s->medium.sigma_t, -(len + (t - t0)))));
     double p = sh_phase_eval(&s->medium.phase, sh_dot(wi, d));
     sum = sh_add(sum, sh_scale(sh_mul(e, s->medium.sigma_s), p * h));
   }

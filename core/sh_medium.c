@@ -57,25 +57,157 @@ int sh_box_clip(sh_vec3 bmin, sh_vec3 bmax, sh_vec3 o, sh_vec3 d, double tmin,
   return hi > lo;
 }
 
+int sh_medium_clip(const sh_medium *m, sh_vec3 o, sh_vec3 d, double tmin,
+                   double tmax, double *t0, double *t1) {
+  return m->present && sh_box_clip(m->bmin, m->bmax, o, d, tmin, tmax, t0, t1);
+}
+
 double sh_medium_length(const sh_medium *m, sh_vec3 a, sh_vec3 b) {
-  if (!m->present) return 0.0;
   sh_vec3 d = sh_sub(b, a);
   double t0, t1;
-  if (!sh_box_clip(m->bmin, m->bmax, a, d, 0.0, 1.0, &t0, &t1)) return 0.0;
+  if (!sh_medium_clip(m, a, d, 0.0, 1.0, &t0, &t1)) return 0.0;
   return (t1 - t0) * sh_length(d);
 }
 
 double sh_medium_length_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d) {
-  if (!m->present) return 0.0;
   double t0, t1;
-  if (!sh_box_clip(m->bmin, m->bmax, p, d, 0.0, INFINITY, &t0, &t1))
-    return 0.0;
+  if (!sh_medium_clip(m, p, d, 0.0, INFINITY, &t0, &t1)) return 0.0;
   return t1 - t0;
 }
 
-sh_vec3 sh_medium_tr(const sh_medium *m, double len) {
-  if (!m->present || len <= 0) return sh_v3s(1.0);
-  return sh_vexp(sh_scale(m->sigma_t, -len));
+/* Height fog's relative density at height y. */
+static double fog_density(const sh_medium *m, double y) {
+  return exp(-(y - m->base_height) / m->scale_height);
+}
+
+/* (1 - exp(-x)) / x for x >= 0, 1 at 0, without cancellation. */
+static double one_minus_exp_over(double x) {
+  return x > 0 ? -expm1(-x) / x : 1.0;
+}
+
+/* The integral of the relative density along o + t d, t in [t0, t1], in
+ * units of length (|d| = dlen): for a homogeneous medium the length. */
+static double density_integral(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                               double t0, double t1, double dlen) {
+  double len = (t1 - t0) * dlen;
+  if (m->type != SH_MEDIUM_HEIGHT_FOG) return len;
+  double y0 = o.y + t0 * d.y, y1 = o.y + t1 * d.y;
+  double rise = fabs(y1 - y0) / m->scale_height;
+  return len * fog_density(m, fmin(y0, y1)) * one_minus_exp_over(rise);
+}
+
+sh_vec3 sh_medium_optical_depth_span(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                     double t0, double t1) {
+  if (!m->present || !(t1 > t0)) return sh_v3s(0.0);
+  return sh_scale(m->sigma_t, density_integral(m, o, d, t0, t1, 1.0));
+}
+
+sh_vec3 sh_medium_optical_depth(const sh_medium *m, sh_vec3 a, sh_vec3 b) {
+  sh_vec3 d = sh_sub(b, a);
+  double t0, t1;
+  if (!sh_medium_clip(m, a, d, 0.0, 1.0, &t0, &t1)) return sh_v3s(0.0);
+  return sh_scale(m->sigma_t, density_integral(m, a, d, t0, t1, sh_length(d)));
+}
+
+sh_vec3 sh_medium_optical_depth_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d) {
+  double t0, t1;
+  if (!sh_medium_clip(m, p, d, 0.0, INFINITY, &t0, &t1)) return sh_v3s(0.0);
+  return sh_medium_optical_depth_span(m, p, d, t0, t1);
+}
+
+sh_vec3 sh_medium_transmittance_span(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                     double t0, double t1) {
+  return sh_vexp(sh_neg(sh_medium_optical_depth_span(m, o, d, t0, t1)));
+}
+
+sh_vec3 sh_medium_transmittance(const sh_medium *m, sh_vec3 a, sh_vec3 b) {
+  return sh_vexp(sh_neg(sh_medium_optical_depth(m, a, b)));
+}
+
+sh_vec3 sh_medium_transmittance_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d) {
+  return sh_vexp(sh_neg(sh_medium_optical_depth_ray(m, p, d)));
+}
+
+/* The relative density at p: 1 for a homogeneous medium. */
+static double density_at(const sh_medium *m, sh_vec3 p) {
+  return m->type == SH_MEDIUM_HEIGHT_FOG ? fog_density(m, p.y) : 1.0;
+}
+
+sh_vec3 sh_medium_sigma_s_at(const sh_medium *m, sh_vec3 p) {
+  if (!m->present) return sh_v3s(0.0);
+  return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_s
+                                          : sh_scale(m->sigma_s, density_at(m, p));
+}
+
+sh_vec3 sh_medium_sigma_a_at(const sh_medium *m, sh_vec3 p) {
+  if (!m->present) return sh_v3s(0.0);
+  return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_a
+                                          : sh_scale(m->sigma_a, density_at(m, p));
+}
+
+sh_vec3 sh_medium_sigma_t_at(const sh_medium *m, sh_vec3 p) {
+  if (!m->present) return sh_v3s(0.0);
+  return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_t
+                                          : sh_scale(m->sigma_t, density_at(m, p));
+}
+
+const sh_phase *sh_medium_phase_at(const sh_medium *m, sh_vec3 p) {
+  (void)p;
+  return &m->phase;
+}
+
+sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
+                           double t1) {
+  if (!m->present) return sh_v3s(0.0);
+  if (m->type != SH_MEDIUM_HEIGHT_FOG) return m->sigma_t;
+  double y = fmin(o.y + t0 * d.y, o.y + t1 * d.y);
+  return sh_scale(m->sigma_t, fog_density(m, y));
+}
+
+/* Height fog: the t in [a, inf) at which the density integral from a
+ * reaches w (>= 0), along a unit d; INFINITY if it never does (a ray going
+ * up holds at most rho(y_a) H / d.y). */
+static double fog_invert(const sh_medium *m, sh_vec3 o, sh_vec3 d, double a,
+                         double w) {
+  double H = m->scale_height, rho = fog_density(m, o.y + a * d.y);
+  double base = w / rho; /* the length it would take at a's density */
+  /* w = rho H / d.y (1 - exp(-d.y s / H)), so s = -H / d.y log1p(-z),
+   * z = w d.y / (rho H); written as base * (-log1p(-z) / z). */
+  double z = base * d.y / H;
+  if (z >= 1.0) return INFINITY;
+  double f = z != 0 ? -log1p(-z) / z : 1.0;
+  return a + base * f;
+}
+
+double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                 double a, double b, double u,
+                                 double *inv_pdf) {
+  double k = (m->sigma_t.x + m->sigma_t.y + m->sigma_t.z) / 3.0;
+  double len = b - a;
+  if (m->type != SH_MEDIUM_HEIGHT_FOG) {
+    /* Density proportional to exp(-k (t - a)). */
+    double kl = k * len;
+    if (kl < 1e-6) {
+      *inv_pdf = len;
+      return a + u * len;
+    }
+    double norm = -expm1(-kl); /* 1 - exp(-k len) */
+    double t = a - log1p(-u * norm) / k;
+    *inv_pdf = norm / (k * exp(-k * (t - a)));
+    return t;
+  }
+  double kl = k * density_integral(m, o, d, a, b, 1.0);
+  if (!(kl >= 1e-6)) {
+    *inv_pdf = len;
+    return a + u * len;
+  }
+  double norm = -expm1(-kl);
+  double tau = -log1p(-u * norm); /* the mean channel's depth from a */
+  double t = sh_clamp(fog_invert(m, o, d, a, tau / k), a, b);
+  double kt = k * density_at(m, sh_madd(o, d, t));
+  /* exp(-tau) is the mean channel's transmittance from a to t. */
+  *inv_pdf = norm / (kt * exp(-tau));
+  return t;
 }
 
 double sh_medium_light_min_distance(const sh_medium *m) {

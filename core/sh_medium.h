@@ -1,5 +1,7 @@
-/* The homogeneous medium: normalised phase functions, the segment of a ray
- * inside the medium's bounds, and transmittance. */
+/* The participating medium: normalised phase functions, the region the
+ * medium fills, and what depends on its kind (homogeneous or height fog):
+ * optical depth, transmittance, the coefficients and the phase at a point,
+ * a majorant and distance sampling. */
 #ifndef SH_MEDIUM_H
 #define SH_MEDIUM_H
 
@@ -19,16 +21,81 @@ double sh_phase_eval(const sh_phase *phase, double cos_alpha);
 int sh_box_clip(sh_vec3 bmin, sh_vec3 bmax, sh_vec3 o, sh_vec3 d, double tmin,
                 double tmax, double *t0, double *t1);
 
-/* The length of the segment [a, b] inside the medium's bounds; 0 without a
- * medium. */
+/* The medium as an interface (after pbrt-v4's and Mitsuba 3's media): what
+ * depends on the medium's kind (sh_medium_type) is answered here, and no
+ * renderer computes "length times sigma_t" itself.
+ *
+ * Kinds and formulas (docs/scene-format.md, "Non-uniform media"):
+ * - homogeneous: sigma_s, sigma_a, sigma_t the same everywhere in the box;
+ *   optical depth sigma_t * length.
+ * - height fog: every coefficient at p is its value at base_height times
+ *   rho(p) = exp(-(p.y - base_height) / H). Along p + t d, t in [t0, t1],
+ *   the integral of rho is rho(y_low) |d| (t1 - t0) g(|d.y| (t1 - t0) / H),
+ *   y_low the lower end's height and g(x) = (1 - exp(-x)) / x = -expm1(-x)
+ *   / x (g(0) = 1): the contract's sigma_t H / d.y (exp(..t0) - exp(..t1))
+ *   rewritten without the cancellation of a nearly horizontal ray and
+ *   without overflow far below the base. Optical depth is sigma_t times it.
+ *
+ * "Span" functions take o + t d with d a unit vector and [t0, t1] already
+ * inside the region (sh_medium_clip); "segment" and "ray" functions clip
+ * themselves. Optical depths are per RGB channel, >= 0; all functions
+ * return 0 optical depth (transmittance 1, coefficients 0) without a
+ * medium. Nothing here allocates or fails. */
+
+/* The region the medium fills (a box): clips o + t d, t in [tmin, tmax],
+ * to it. Returns 1 and the interval in *t0 < *t1 if it is not empty; 0
+ * without a medium. */
+int sh_medium_clip(const sh_medium *m, sh_vec3 o, sh_vec3 d, double tmin,
+                   double tmax, double *t0, double *t1);
+
+/* The length of the segment [a, b] inside the region; 0 without a medium. */
 double sh_medium_length(const sh_medium *m, sh_vec3 a, sh_vec3 b);
 
-/* The length of the ray from p in the unit direction d inside the medium's
- * bounds (up to infinity); 0 without a medium. */
+/* The length of the ray from p in the unit direction d inside the region
+ * (up to infinity); 0 without a medium. */
 double sh_medium_length_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d);
 
-/* exp(-sigma_t * len) per channel; 1 without a medium. */
-sh_vec3 sh_medium_tr(const sh_medium *m, double len);
+/* Optical depth along o + t d (d unit), t in [t0, t1] inside the region. */
+sh_vec3 sh_medium_optical_depth_span(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                     double t0, double t1);
+
+/* Optical depth of the part of the segment [a, b] inside the region. */
+sh_vec3 sh_medium_optical_depth(const sh_medium *m, sh_vec3 a, sh_vec3 b);
+
+/* Optical depth of the part inside the region of the ray from p in the
+ * unit direction d, up to infinity. */
+sh_vec3 sh_medium_optical_depth_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d);
+
+/* exp(-optical depth) of the same three. */
+sh_vec3 sh_medium_transmittance_span(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                     double t0, double t1);
+sh_vec3 sh_medium_transmittance(const sh_medium *m, sh_vec3 a, sh_vec3 b);
+sh_vec3 sh_medium_transmittance_ray(const sh_medium *m, sh_vec3 p, sh_vec3 d);
+
+/* The coefficients at a point p inside the region (per unit length). */
+sh_vec3 sh_medium_sigma_s_at(const sh_medium *m, sh_vec3 p);
+sh_vec3 sh_medium_sigma_a_at(const sh_medium *m, sh_vec3 p);
+sh_vec3 sh_medium_sigma_t_at(const sh_medium *m, sh_vec3 p);
+
+/* The phase function at p (the same everywhere for both kinds today). */
+const sh_phase *sh_medium_phase_at(const sh_medium *m, sh_vec3 p);
+
+/* A majorant of sigma_t over the span o + t d, t in [t0, t1] (d unit,
+ * inside the region): sigma_t >= it nowhere exceeded there. Exact (the
+ * maximum) for both kinds: height fog's is at the span's lowest point. */
+sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
+                           double t1);
+
+/* Distance sampling along the span o + t d, t in [a, b] (d unit, inside
+ * the region), by the transmittance of the mean channel: density
+ * proportional to k(t) exp(-tau_k(a, t)), k the mean of sigma_t's channels
+ * at t and tau_k its optical depth, normalised over [a, b] by inverting
+ * the closed-form optical depth. Where the span's mean optical depth is
+ * below 1e-6 the density is uniform instead. u in [0, 1). Returns the
+ * sample t and sets *inv_pdf to 1 / its density. */
+double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                                 double a, double b, double u,
+                                 double *inv_pdf);
 
 /* The nearest a ray is taken to pass to a point or spot light when the
  * light it scatters is integrated: 1e-4 of the diagonal of the medium's

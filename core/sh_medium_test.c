@@ -64,8 +64,13 @@ int main(void) {
                 1e-12, 0);
   SH_CHECK_NEAR(sh_medium_length_ray(&m, sh_v3(0, 0, 0), sh_v3(0, 1, 0)), 1.0,
                 1e-12, 0);
-  sh_vec3 tr = sh_medium_tr(&m, 2.0);
+  /* Homogeneous: optical depth sigma_t times the length inside the box. */
+  sh_vec3 tr = sh_medium_transmittance(&m, sh_v3(-3, 0, 0), sh_v3(3, 0, 0));
   SH_CHECK_NEAR(tr.x, exp(-1.0), 1e-12, 0);
   SH_CHECK_NEAR(tr.z, exp(-4.0), 1e-12, 0);
+  tr = sh_medium_transmittance_ray(&m, sh_v3(0, 0, 0), sh_v3(0, -1, 0));
+  SH_CHECK_NEAR(tr.y, exp(-1.0), 1e-12, 0);
+  sh_vec3 mj = sh_medium_majorant(&m, sh_v3(0, 0, 0), sh_v3(1, 0, 0), 0, 1);
+  SH_CHECK(mj.x == 0.5 && mj.z == 2.0);
   SH_TEST_DONE();
 }

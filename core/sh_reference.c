@@ -63,9 +63,9 @@ static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
                          : sh_rt_visibility(w->job->rt, origin, wi, tmax,
                                             &w->counters);
     if (sh_is_black(vis)) continue;
-    double len = isinf(dist) ? sh_medium_length_ray(&scene->medium, p, wi)
-                             : sh_medium_length(&scene->medium, p, l->position);
-    e = sh_mul(sh_mul(e, vis), sh_medium_tr(&scene->medium, len));
+    sh_vec3 tr = isinf(dist) ? sh_medium_transmittance_ray(&scene->medium, p, wi)
+                             : sh_medium_transmittance(&scene->medium, p, l->position);
+    e = sh_mul(sh_mul(e, vis), tr);
     sh_vec3 f = sh_scale(mat->diffuse, SH_INV_PI * cosl);
     if (has_spec) {
       double rv = sh_dot(sh_reflect(sh_neg(wi), n), sh_neg(d));
@@ -121,8 +121,8 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
   sh_vec3 L = hit ? shade(w, &h, d, depth, rng) : scene->background;
   const sh_medium *m = &scene->medium;
   double t0, t1;
-  if (m->present && sh_box_clip(m->bmin, m->bmax, o, d, 0.0, tend, &t0, &t1)) {
-    L = sh_mul(L, sh_medium_tr(m, t1 - t0));
+  if (sh_medium_clip(m, o, d, 0.0, tend, &t0, &t1)) {
+    L = sh_mul(L, sh_medium_transmittance_span(m, o, d, t0, t1));
     for (int i = 0; i < scene->nlights; i++)
       L = sh_add(L, sh_inscatter_light(scene, w->job->rt, w->job->opt->hook,
                                        w->index, &scene->lights[i], o,

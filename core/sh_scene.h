@@ -37,10 +37,23 @@ typedef struct sh_phase {
   double g; /* Henyey-Greenstein asymmetry, (-1, 1); 0 for the others */
 } sh_phase;
 
+/* The kinds of medium (docs/scene-format.md, "Non-uniform media"). Only
+ * sh_medium.h's functions look at the kind: renderers ask the medium for
+ * optical depth, coefficients and phase at a point. */
+typedef enum sh_medium_type {
+  SH_MEDIUM_HOMOGENEOUS, /* the coefficients are the same everywhere */
+  SH_MEDIUM_HEIGHT_FOG   /* every coefficient times exp(-(y - base) / H) */
+} sh_medium_type;
+
 typedef struct sh_medium {
   int present;             /* 0: vacuum everywhere, the rest is unused */
-  sh_vec3 sigma_s, sigma_a; /* per unit length, >= 0 */
+  sh_medium_type type;     /* 0 (homogeneous) unless the scene says */
+  /* Per unit length, >= 0: everywhere for a homogeneous medium, at
+   * base_height for height fog. */
+  sh_vec3 sigma_s, sigma_a;
   sh_vec3 sigma_t;          /* derived: sigma_s + sigma_a */
+  double base_height;       /* height fog: the Y of the reference level */
+  double scale_height;      /* height fog: H > 0 */
   sh_phase phase;
   sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax */
 } sh_medium;

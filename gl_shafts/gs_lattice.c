@@ -10,19 +10,19 @@
 sh_vec3 gs__xi_r2(const sh_scene *scene, const sh_light *l, sh_vec3 eye,
                   sh_vec3 p) {
   const sh_medium *m = &scene->medium;
-  sh_vec3 wi;
-  double light_len;
+  sh_vec3 wi, tau;
   if (l->type == SH_LIGHT_DIRECTIONAL) {
     wi = sh_neg(l->direction);
-    light_len = sh_medium_length_ray(m, p, wi);
+    tau = sh_medium_optical_depth_ray(m, p, wi);
   } else {
     wi = sh_normalize(sh_sub(l->position, p));
-    light_len = sh_medium_length(m, p, l->position);
+    tau = sh_medium_optical_depth(m, p, l->position);
   }
   sh_vec3 view = sh_normalize(sh_sub(p, eye));
-  double ph = sh_phase_eval(&m->phase, sh_dot(wi, view));
-  sh_vec3 tr = sh_medium_tr(m, light_len + sh_medium_length(m, eye, p));
-  return sh_scale(sh_mul(m->sigma_s, tr), ph);
+  double ph = sh_phase_eval(sh_medium_phase_at(m, p), sh_dot(wi, view));
+  tau = sh_add(tau, sh_medium_optical_depth(m, eye, p));
+  sh_vec3 tr = sh_vexp(sh_neg(tau));
+  return sh_scale(sh_mul(sh_medium_sigma_s_at(m, p), tr), ph);
 }
 
 sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
