@@ -58,7 +58,8 @@ python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["bad_values"]
   || { echo "FAIL: negative values not counted"; fail=1; }
 "$tool" "$dir/ref.exr" "$dir/negative.exr" --max-rel-rms 100 >/dev/null 2>&1; check "bad values fail the bound" 3 $?
 
-"$tool" "$dir/ref.exr" "$dir/small.exr" >/dev/null 2>&1; check "size mismatch" 2 $?
+"$tool" "$dir/ref.exr" "$dir/small.exr" >/dev/null 2>"$dir/err"; check "size mismatch" 2 $?
+message_has "size mismatch" "$dir/err" "'$dir/small.exr' is 12x16 and the reference '$dir/ref.exr' 24x16: the images must be the same size"
 "$tool" "$dir/ref.exr" "$dir/missing.exr" >/dev/null 2>&1; check "missing image" 2 $?
 "$tool" "$dir/ref.exr" >/dev/null 2>&1; check "one image" 2 $?
 "$tool" "$dir/ref.exr" "$dir/ref.exr" --lit 2 >/dev/null 2>&1; check "bad --lit" 2 $?

@@ -194,6 +194,18 @@ int main(int argc, char **argv) {
     sh_outputs_free(set);
     return 2;
   }
+  if (img.width != ref.width || img.height != ref.height) {
+    /* sh_image_compare refuses it too, without the files' names. */
+    fprintf(stderr,
+            "%s: error: '%s' is %dx%d and the reference '%s' %dx%d: the "
+            "images must be the same size (render both at one --width and "
+            "--height)\n",
+            TOOL, a.img, img.width, img.height, a.ref, ref.width, ref.height);
+    sh_image_free(&ref);
+    sh_image_free(&img);
+    sh_outputs_free(set);
+    return 2;
+  }
   warn_mixed_encoding(a.ref, a.img);
   st = sh_image_compare(&img, &ref, a.lit, &r.e, a.diff ? &absdiff : NULL,
                           &err);
