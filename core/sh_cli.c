@@ -1,6 +1,7 @@
 #include "sh_cli.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <getopt.h>
 #include <jansson.h>
 #include <limits.h>
@@ -132,18 +133,31 @@ void sh_cli_help(const sh_cli_tool *t, FILE *f) {
   char status[512];
   snprintf(status, sizeof status,
            "Exit status: 0 on success, 1 when the work fails, 2 for bad input "
-           "(arguments, a missing or bad scene, mesh or image file)%s%s",
+           "(%s)%s%s",
+           t->bad_input ? t->bad_input
+                        : "arguments, a missing or bad scene, mesh or image file",
            t->exit_extra ? ", " : ".", t->exit_extra ? t->exit_extra : "");
   fputc('\n', f);
   wrap(f, status, 0, 0);
+}
+
+/* ---- Messages ---- */
+
+void sh_cli_error(const char *tool, const char *format, ...) {
+  va_list ap;
+  va_start(ap, format);
+  fprintf(stderr, "%s: error: ", tool);
+  vfprintf(stderr, format, ap);
+  fputc('\n', stderr);
+  va_end(ap);
 }
 
 /* ---- Values ---- */
 
 static int bad_value(const sh_cli_tool *t, const sh_cli_option *o,
                      const char *text, const char *expected) {
-  fprintf(stderr, "%s: --%s expects %s, got '%s'\n", t->name, o->name,
-          expected, text);
+  sh_cli_error(t->name, "--%s: expected %s, found '%s'", o->name, expected,
+               text);
   return 0;
 }
 
@@ -154,7 +168,7 @@ static int parse_int(const sh_cli_tool *t, const sh_cli_option *o,
   long v = strtol(text, &end, 10);
   if (end == text || *end || errno || v < o->lo || v > o->hi) {
     char expected[96];
-    snprintf(expected, sizeof expected, "an integer in [%.0f, %.0f]", o->lo,
+    snprintf(expected, sizeof expected, "an integer from %.0f to %.0f", o->lo,
              o->hi);
     return bad_value(t, o, text, expected);
   }
@@ -197,7 +211,7 @@ static int store(const sh_cli_tool *t, const sh_cli_option *o, int k,
   case SH_CLI_LIST: {
     sh_cli_list *l = field;
     if (l->count == SH_CLI_LIST_MAX) {
-      fprintf(stderr, "%s: --%s may be given at most %d times\n", t->name,
+      fprintf(stderr, "%s: error: --%s may be given at most %d times\n", t->name,
               o->name, SH_CLI_LIST_MAX);
       return 0;
     }
@@ -213,8 +227,8 @@ static int store(const sh_cli_tool *t, const sh_cli_option *o, int k,
         return 1;
       }
     choice_list(t, o, ", ", list, sizeof list);
-    fprintf(stderr, "%s: --%s expects one of %s, got '%s'\n", t->name,
-            o->name, list, text);
+    sh_cli_error(t->name, "--%s: unknown value '%s'; expected one of: %s",
+                 o->name, text, list);
     return 0;
   case SH_CLI_SETTER: break; /* setter() */
   }
@@ -234,7 +248,7 @@ static int setter(const sh_cli_tool *t, const sh_cli_option *o,
                             texts[k]);
   sh_error err;
   if (t->setter(t->setter_target, o->key, value, &err) != SH_OK) {
-    fprintf(stderr, "%s: --%s: %s\n", t->name, o->name, err.message);
+    sh_cli_error(t->name, "--%s: %s", o->name, err.message);
     return 0;
   }
   args->settings[args->nsettings++].key = o->key;
@@ -266,7 +280,7 @@ static int report_ambiguous(const char *tool, const struct option *longs,
   for (const struct option *o = longs; o->name; o++)
     count += !strncmp(o->name, text + 2, n);
   if (count < 2) return 0;
-  fprintf(stderr, "%s: ambiguous option '%.*s': it could be", tool,
+  fprintf(stderr, "%s: error: ambiguous option '%.*s': it could be", tool,
           (int)n + 2, text);
   int k = 0;
   for (const struct option *o = longs; o->name; o++)
@@ -285,7 +299,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
   memset(args, 0, sizeof *args);
   sh_cli_signals();
   if (t->noptions > SH_CLI_MAX_OPTIONS) {
-    fprintf(stderr, "%s: too many options in the tool's table\n", t->name);
+    fprintf(stderr, "%s: error: too many options in the tool's table\n", t->name);
     return SH_EXIT_FAILURE;
   }
   for (int i = 0; i < t->noptions; i++) {
@@ -317,7 +331,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
       if (optind >= argc) break;
       if (args->noperands == SH_CLI_MAX_OPERANDS ||
           args->noperands == t->max_operands) {
-        fprintf(stderr, "%s: unexpected argument '%s' (see --help)\n",
+        fprintf(stderr, "%s: error: unexpected argument '%s' (see --help)\n",
                 t->name, argv[optind]);
         return SH_EXIT_BAD_INPUT;
       }
@@ -335,19 +349,19 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
     }
     if (c == '?') {
       if (optopt && optopt < 256)
-        fprintf(stderr, "%s: unknown option '-%c' (see --help)\n", t->name,
+        fprintf(stderr, "%s: error: unknown option '-%c' (see --help)\n", t->name,
                 optopt);
       else if (!report_ambiguous(t->name, longs, text))
-        fprintf(stderr, "%s: unknown option '%s' (see --help)\n", t->name,
+        fprintf(stderr, "%s: error: unknown option '%s' (see --help)\n", t->name,
                 text);
       return SH_EXIT_BAD_INPUT;
     }
     if (c == ':') {
       if (optopt > 0 && optopt < 256 && text[1] != '-')
-        fprintf(stderr, "%s: -%c needs a value (see --help)\n", t->name,
+        fprintf(stderr, "%s: error: -%c needs a value (see --help)\n", t->name,
                 optopt);
       else
-        fprintf(stderr, "%s: %s needs a value (see --help)\n", t->name, text);
+        fprintf(stderr, "%s: error: %s needs a value (see --help)\n", t->name, text);
       return SH_EXIT_BAD_INPUT;
     }
     int i = 0;
@@ -359,7 +373,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
     const char *texts[SH_CLI_MAX_VALUES] = {optarg};
     for (int k = 1; k < n; k++) {
       if (optind >= argc) {
-        fprintf(stderr, "%s: --%s needs %d values: %s (see --help)\n",
+        fprintf(stderr, "%s: error: --%s needs %d values: %s (see --help)\n",
                 t->name, o->name, n, o->metavar ? o->metavar : "");
         return SH_EXIT_BAD_INPUT;
       }
@@ -376,7 +390,7 @@ int sh_cli_parse(const sh_cli_tool *t, int argc, char **argv, void *values,
       if (!store(t, o, k, texts[k], values)) return SH_EXIT_BAD_INPUT;
   }
   if (args->noperands < t->min_operands) {
-    fprintf(stderr, "%s: missing operand%s: usage: %s %s\n", t->name,
+    fprintf(stderr, "%s: error: missing operand%s: usage: %s %s\n", t->name,
             t->min_operands - args->noperands > 1 ? "s" : "", t->name,
             t->synopsis);
     return SH_EXIT_BAD_INPUT;
@@ -424,7 +438,7 @@ int sh_cli_check_output(const char *tool, const char *option,
       p += len + (p[len] == ',');
     }
     if (!ok) {
-      fprintf(stderr, "%s: %s '%s' must end in .%.*s", tool, option, path,
+      fprintf(stderr, "%s: error: %s '%s' must end in .%.*s", tool, option, path,
               (int)strcspn(exts, ","), exts);
       for (const char *p = exts + strcspn(exts, ","); *p == ',';) {
         p++;
@@ -437,30 +451,48 @@ int sh_cli_check_output(const char *tool, const char *option,
     }
   }
   const char *slash = strrchr(path, '/');
-  if (!slash || slash == path) return 1; /* the working directory, the root */
-  char *dir = malloc((size_t)(slash - path) + 1);
+  /* The directory: the working one, the root, or the path's. */
+  size_t len = !slash ? 1 : slash == path ? 1 : (size_t)(slash - path);
+  char *dir = malloc(len + sizeof "/.shafts-probe-XXXXXX");
   if (!dir) {
     fprintf(stderr, "%s: error: out of memory\n", tool);
     return 0;
   }
-  memcpy(dir, path, (size_t)(slash - path));
-  dir[slash - path] = '\0';
+  memcpy(dir, !slash ? "." : path, len);
+  dir[len] = '\0';
   int ok = 1;
   struct stat sb;
   if (stat(dir, &sb) != 0) {
     if (!(create && make_dirs(dir) == 0)) {
       ok = 0;
       if (create)
-        fprintf(stderr, "%s: %s: cannot make directory '%s': %s\n", tool,
-                option, dir, strerror(errno));
+        sh_cli_error(tool, "%s: cannot make directory '%s': %s", option, dir,
+                     strerror(errno));
       else
-        fprintf(stderr, "%s: %s: directory '%s' does not exist (-p, --parents "
-                        "makes it)\n", tool, option, dir);
+        sh_cli_error(tool,
+                     "%s: directory '%s' does not exist (-p, --parents makes "
+                     "it)",
+                     option, dir);
     }
   } else if (!S_ISDIR(sb.st_mode) || access(dir, W_OK | X_OK) != 0) {
     ok = 0;
-    fprintf(stderr, "%s: %s: '%s' is not a directory this user can write to\n",
-            tool, option, dir);
+    sh_cli_error(tool, "%s: '%s' is not a directory this user can write to",
+                 option, dir);
+  }
+  if (ok) {
+    /* Permissions do not tell everything (/proc, a read-only mount, root):
+     * a file made and removed there before the work does. */
+    strcat(dir, "/.shafts-probe-XXXXXX");
+    int fd = mkstemp(dir);
+    if (fd < 0) {
+      ok = 0;
+      dir[len] = '\0';
+      sh_cli_error(tool, "%s: cannot create a file in '%s': %s", option, dir,
+                   strerror(errno));
+    } else {
+      close(fd);
+      unlink(dir);
+    }
   }
   free(dir);
   return ok;
@@ -474,7 +506,7 @@ void sh_cli_render_init(sh_cli_render *r) {
 
 int sh_cli_render_check(const char *tool, const sh_cli_render *r) {
   if (r->outputs.count == 0) {
-    fprintf(stderr, "%s: need -o OUTPUT (see --help)\n", tool);
+    fprintf(stderr, "%s: error: need -o OUTPUT (see --help)\n", tool);
     return SH_EXIT_BAD_INPUT;
   }
   for (int k = 0; k < r->outputs.count; k++)
@@ -500,7 +532,7 @@ int sh_cli_render_scene(const char *tool, sh_cli_render *r,
     sh_error_set(&err, SH_ERR_ARG, "the crop 0 0 0 0 is empty");
   else if (sh_crop_check(&r->crop, &(*scene)->camera, &err) == SH_OK)
     return SH_EXIT_OK;
-  fprintf(stderr, "%s: --crop: %s\n", tool, err.message);
+  fprintf(stderr, "%s: error: --crop: %s\n", tool, err.message);
   sh_scene_free(*scene);
   *scene = NULL;
   return SH_EXIT_BAD_INPUT;

@@ -105,6 +105,9 @@ typedef struct sh_cli_tool {
   sh_cli_setter setter;    /* SETTER options: checks and sets a value */
   void *setter_target;     /* a scratch target the parse checks on */
   sh_cli_setter_choices setter_choices;
+  const char *bad_input; /* what bad input is, for the help's exit status
+                            line ("arguments, a missing or unreadable
+                            image"), or NULL for scenes, meshes and images */
 } sh_cli_tool;
 
 /* What the parse found besides the values: the operands (arguments that
@@ -272,6 +275,11 @@ void sh_cli_resize(sh_scene *scene, long width, long height);
 /* The process exit status for a library status: 2 for bad input (syntax,
  * scene, image, mesh, argument errors), 1 for the rest. */
 int sh_exit_code(sh_status status);
+
+/* Prints "TOOL: error: " and the printf-formatted message on stderr, with
+ * a newline: every tool's error messages have this one form. */
+void sh_cli_error(const char *tool, const char *format, ...)
+    __attribute__((format(printf, 2, 3)));
 
 /* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
  * status for it (sh_exit_code). */

@@ -61,7 +61,7 @@ static renderer scratch;
 static const sh_cli_tool tool = {
     "t", "IN [options]", "A test tool.", options,
     (int)(sizeof options / sizeof *options), 1, 2, NULL, NULL,
-    set_level, &scratch, NULL};
+    set_level, &scratch, NULL, NULL};
 
 /* Parses a NULL-terminated argument list. */
 static int parse(values *v, sh_cli_args *a, ...) {

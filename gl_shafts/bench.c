@@ -82,7 +82,7 @@ static const sh_cli_tool tool = {
     "the\nerror against the converged reference renderer, as a Markdown "
     "table.",
     options, (int)(sizeof options / sizeof *options), 0, SH_CLI_MAX_OPERANDS,
-    NULL, NULL, set_option, &scratch, gs_option_choices};
+    NULL, NULL, set_option, &scratch, gs_option_choices, NULL};
 
 static int parse_list(const char *s, long *out, int max) {
   int n = 0;

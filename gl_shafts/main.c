@@ -76,7 +76,7 @@ static const sh_cli_tool tool = {
     "OSMesa. Options override the\nscene's render keys; docs/gl_shafts.md "
     "has the details.",
     options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
-    set_option, &scratch, gs_option_choices};
+    set_option, &scratch, gs_option_choices, NULL};
 
 /* The settings a render used: the --stats record's first keys and the
  * EXR header's shafts:settings. Every value is a number or a name. */

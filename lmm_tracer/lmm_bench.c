@@ -343,7 +343,7 @@ static const sh_cli_tool tool = {
     "against Embree's\nceiling, volumetric shadows from the mesh (run by "
     "lmm_tracer/bench.sh).",
     options, (int)(sizeof options / sizeof *options), 0, 0, NULL, NULL, NULL,
-    NULL, NULL};
+    NULL, NULL, NULL};
 
 int main(int argc, char **argv) {
   int quick = 0;

@@ -75,7 +75,7 @@ static const sh_cli_tool tool = {
     "single\nscattering in the medium; lmm mode softens shadows by the "
     "light meshes\nmethod (docs/lmm.md).",
     options, (int)(sizeof options / sizeof *options), 1, 1, NULL, NULL,
-    set_option, &scratch, lmm_render_option_choices};
+    set_option, &scratch, lmm_render_option_choices, NULL};
 
 /* The settings a render used (the EXR header's shafts:settings). */
 static char *settings_json(const lmm_render_stats *st, const sh_crop *crop) {
@@ -160,7 +160,7 @@ int main(int argc, char **argv) {
   int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
-    fprintf(stderr, "%s: %s\n", TOOL, err.message);
+    sh_cli_error(TOOL, "%s", err.message);
     sh_cli_render_free(&r);
     sh_scene_free(scene);
     return SH_EXIT_BAD_INPUT;

@@ -71,13 +71,13 @@ int main(int argc, char **argv) {
       "Exports a scene (docs/scene-format.md) so that other renderers draw "
       "the same\nimage in linear radiance (docs/scene_export.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, help_targets, NULL,
-      NULL, NULL, NULL};
+      NULL, NULL, NULL, NULL};
   args a = {NULL, -1, SE_QUALITY_DRAFT, 0, 0};
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
   if (a.to < 0 || !a.output) {
-    fprintf(stderr, "%s: %s is required (see --help)\n", TOOL,
+    sh_cli_error(TOOL, "%s is required (see --help)",
             a.to < 0 ? "--to" : "-o OUT");
     return SH_EXIT_BAD_INPUT;
   }

@@ -36,16 +36,27 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   name=$(basename "$tool")
   version_ok "$tool"
   "$tool" "$scene" -o "$dir/x.exr" --bogus 2>"$dir/err"; check "unknown option last" 2 $?
-  message_has "unknown option last" "$dir/err" "unknown option '--bogus'"
+  message_has "unknown option last" "$dir/err" "$name: error: unknown option '--bogus'"
+  # Every error has one form, "TOOL: error: ...", and a bad value one
+  # phrasing, "--OPTION: expected ..., found '...'" (README.md).
+  "$tool" "$scene" -o "$dir/x.exr" --width 0 2>"$dir/err"; check "--width 0" 2 $?
+  message_has "--width 0" "$dir/err" "$name: error: --width: expected an integer from 1 to 65536, found '0'"
+  "$tool" "$scene" -o "$dir/x.ro" 2>"$dir/err"; check "bad output name" 2 $?
+  message_has "bad output name" "$dir/err" "$name: error: -o '$dir/x.ro' must end in .exr or .png"
+  # A directory where no file can be made (/proc even for root) is refused
+  # before the work, not after it.
+  "$tool" "$scene" -o /proc/x.png 2>"$dir/err"; check "unwritable directory" 2 $?
+  message_has "unwritable directory" "$dir/err" "$name: error: -o: "
+  grep -q "rendered in" "$dir/err" && { echo "FAIL: rendered before refusing /proc/x.png"; fail=1; }
   # --s begins --stats and at least one more of each renderer's options.
   "$tool" "$scene" -o "$dir/x.exr" --s 1 2>"$dir/err"; check "ambiguous option" 2 $?
   message_has "ambiguous option" "$dir/err" "ambiguous option '--s': it could be --"
   message_has "ambiguous option" "$dir/err" "--stats"
   "$tool" "$scene" -o "$dir/x.exr" --exposure 2>"$dir/err"; check "value missing last" 2 $?
-  message_has "value missing last" "$dir/err" "--exposure needs a value"
+  message_has "value missing last" "$dir/err" "$name: error: --exposure needs a value"
   "$tool" "$dir/missing.json" -o "$dir/x.exr" -q 2>/dev/null; check "missing scene" 2 $?
   "$tool" "$scene" -o "$dir/no/such/x.exr" -q 2>"$dir/err"; check "missing directory" 2 $?
-  message_has "missing directory" "$dir/err" "directory '$dir/no/such' does not exist"
+  message_has "missing directory" "$dir/err" "$name: error: -o: directory '$dir/no/such' does not exist"
   [ -e "$dir/no" ] && { echo "FAIL: a missing directory was made without -p"; fail=1; }
   "$tool" "$scene" -o "$dir/made/here/x.exr" -p "$@" 2>"$dir/err"; check "-p" 0 $?
   [ -s "$dir/made/here/x.exr" ] || { echo "FAIL: -p did not write"; fail=1; }

@@ -62,7 +62,11 @@ python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["bad_values"]
 message_has "size mismatch" "$dir/err" "'$dir/small.exr' is 12x16 and the reference '$dir/ref.exr' 24x16: the images must be the same size"
 "$tool" "$dir/ref.exr" "$dir/missing.exr" >/dev/null 2>&1; check "missing image" 2 $?
 "$tool" "$dir/ref.exr" >/dev/null 2>&1; check "one image" 2 $?
-"$tool" "$dir/ref.exr" "$dir/ref.exr" --lit 2 >/dev/null 2>&1; check "bad --lit" 2 $?
+"$tool" "$dir/ref.exr" "$dir/ref.exr" --lit 2 >/dev/null 2>"$dir/err"; check "bad --lit" 2 $?
+message_has "bad --lit" "$dir/err" "shafts_compare: error: --lit: expected a number in [0, 1"
+# The help's exit status line names this tool's bad input: images, no scene.
+"$tool" --help | tr '\n' ' ' | tr -s ' ' >"$dir/help"
+message_has "--help" "$dir/help" "2 for bad input (arguments, a missing or unreadable image)"
 "$tool" "$dir/ref.exr" "$dir/ref.exr" --diff "$dir/x.tga" >/dev/null 2>&1; check "bad diff name" 2 $?
 "$tool" "$dir/ref.exr" "$dir/ref.exr" --bogus >/dev/null 2>&1; check "unknown option" 2 $?
 [ -e "$dir/x.tga" ] && { echo "FAIL: an output was written after an error"; fail=1; }

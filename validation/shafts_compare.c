@@ -93,7 +93,8 @@ static const sh_cli_tool tool = {
     "Compares IMG with the reference REF (same size; any format OpenImageIO\n"
     "reads, taken as linear radiance for float formats) and prints the errors.",
     options, (int)(sizeof options / sizeof *options), 2, 2, epilogue,
-    "3 if --max-rel-rms is exceeded.", NULL, NULL, NULL};
+    "3 if --max-rel-rms is exceeded.", NULL, NULL, NULL,
+    "arguments, a missing or unreadable image"};
 
 /* True if `path` holds linear float radiance: an EXR (by its first bytes)
  * or a Radiance HDR or PFM file (by its name); sh_image_read decodes the
@@ -132,8 +133,7 @@ static int parse_args(int argc, char **argv, args *a) {
   int rc = sh_cli_parse(&tool, argc, argv, a, &parsed);
   if (rc >= 0) return rc;
   if (a->lit >= 1) {
-    fprintf(stderr, "%s: --lit expects a number in [0, 1), got %g\n", TOOL,
-            a->lit);
+    sh_cli_error(TOOL, "--lit: expected a number in [0, 1), found '%g'", a->lit);
     return SH_EXIT_BAD_INPUT;
   }
   a->ref = parsed.operands[0];
