@@ -255,6 +255,29 @@ static int setter(const sh_cli_tool *t, const sh_cli_option *o,
   return 1;
 }
 
+void sh_cli_option_names(const sh_cli_tool *t, const char *message,
+                         char *out, size_t size) {
+  size_t n = 0;
+  if (!size) return;
+  for (const char *p = message; *p && n + 1 < size;) {
+    size_t len = strspn(p, "abcdefghijklmnopqrstuvwxyz_");
+    int word = len && (p == message || !strchr("._-", p[-1])) &&
+               !(p[len] && strchr(".-", p[len]));
+    const sh_cli_option *o = NULL;
+    for (int i = 0; word && i < t->noptions && !o; i++)
+      if (t->options[i].type == SH_CLI_SETTER && t->options[i].key &&
+          strlen(t->options[i].key) == len &&
+          !strncmp(t->options[i].key, p, len))
+        o = &t->options[i];
+    if (o)
+      n += (size_t)snprintf(out + n, size - n, "--%s", o->name);
+    else
+      n += (size_t)snprintf(out + n, size - n, "%.*s", len ? (int)len : 1, p);
+    p += len ? len : 1;
+  }
+  out[n < size ? n : size - 1] = '\0';
+}
+
 sh_status sh_cli_apply(const sh_cli_tool *t, const sh_cli_args *args,
                        void *target, sh_error *err) {
   for (int i = 0; i < args->nsettings; i++) {

@@ -276,6 +276,14 @@ void sh_cli_resize(sh_scene *scene, long width, long height);
  * scene, image, mesh, argument errors), 1 for the rest. */
 int sh_exit_code(sh_status status);
 
+/* Copies `message` (a renderer's error about its options by name: "area_radius
+ * needs mode whitted") into `out` with each word that is the key of one of
+ * t's SETTER options replaced by the option ("--area-radius needs --mode
+ * whitted"). Words in dotted or hyphenated names (render.scheme,
+ * refract-both) are left alone. */
+void sh_cli_option_names(const sh_cli_tool *t, const char *message,
+                         char *out, size_t size);
+
 /* Prints "TOOL: error: " and the printf-formatted message on stderr, with
  * a newline: every tool's error messages have this one form. */
 void sh_cli_error(const char *tool, const char *format, ...)

@@ -31,6 +31,25 @@ render_files_distinct "$tool" "$dir/good.json" --spp 2
 # Half a million samples a pixel: seconds, so the signals come mid-render.
 render_signals "$tool" "$dir/good.json" --spp 500000
 "$tool" "$dir/good.json" -o "$dir/x.exr" --refined -q 2>"$dir/err"; check "--refined without lmm" 2 $?
+# Options that do not apply are refused, named as on the command line.
+refused() { # expected message, arguments...
+  local want=$1
+  shift
+  "$tool" "$dir/good.json" -o "$dir/x.exr" -q "$@" 2>"$dir/err"; check "$*" 2 $?
+  message_has "$*" "$dir/err" "lmm_tracer: error: $want"
+}
+refused "--refined needs --mode lmm and --scheme refract-both" --refined
+refused "--refined needs --scheme refract-both (render.scheme or the default gives refract-trace)" --mode lmm --refined
+refused "--area-radius needs --mode whitted" --area-radius 0.2
+refused "--caustic-rays needs --mode lmm and --scheme refract-both" --mode lmm --scheme straight --caustic-rays 5
+refused "--mesh-step needs --mode lmm" --mode whitted --mesh-step 0.1
+refused "--kl needs --mode lmm" --kl 3
+refused "--lmm-volume needs --mode lmm" --lmm-volume exact
+refused "--area-samples needs --area-radius" --mode whitted --area-samples 4
+refused "--scheme refract-both needs --mode lmm" --scheme refract-both
+refused "--spp: expected an integer from 1 to 16777216, found '-1'" --spp -1
+refused "--mode: unknown value 'foo'; expected one of: reference, whitted, lmm" --mode foo
+[ -e "$dir/x.exr" ] && { echo "FAIL: an image was written after a refusal"; fail=1; }
 # The stats of a reference hold no method's keys; lmm's hold the caustic
 # pass's time inside the whole call's.
 grep -q '"mesh_step"\|"caustic' "$dir/a.json" && { echo "FAIL: lmm keys in a reference's stats"; fail=1; }

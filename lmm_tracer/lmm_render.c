@@ -66,11 +66,30 @@ sh_status lmm_render_options_check(const lmm_render_options *opt,
                                    sh_error *err) {
   sh_status st = sh__options_check(options, NOPTIONS, opt, err);
   if (st != SH_OK) return st;
-  if (opt->refined && opt->mode != LMM_MODE_LMM)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "refined needs mode lmm and scheme refract-both");
+  /* An option that would not apply is refused, not ignored (as pbrt-v4
+   * refuses an unused parameter). The error's key is the option; the
+   * message names options by their keys and values ("needs mode lmm"), so
+   * a command line can put its own names in their place. */
+  int lmm = opt->mode == LMM_MODE_LMM;
+  int other_scheme = opt->scheme && opt->scheme != LMM_SCHEME_REFRACT_BOTH;
+  if (opt->refined && (!lmm || other_scheme))
+    return sh__options_fail(err, "refined",
+                            "refined needs mode lmm and scheme refract-both");
+  if (opt->caustic_rays > 0 && (!lmm || other_scheme))
+    return sh__options_fail(err, "caustic_rays", "caustic_rays needs mode "
+                            "lmm and scheme refract-both");
+  static const char *const lmm_only[] = {"mesh_step", "kl", "volume"};
+  int given[] = {opt->mesh_step > 0, opt->kl > 0, opt->volume_exact};
+  for (int i = 0; i < 3; i++)
+    if (given[i] && !lmm)
+      return sh__options_fail(err, lmm_only[i], "%s needs mode lmm",
+                              lmm_only[i]);
   if (opt->area_radius >= 0 && opt->mode != LMM_MODE_WHITTED)
-    return sh_error_set(err, SH_ERR_ARG, "area_radius needs mode whitted");
+    return sh__options_fail(err, "area_radius",
+                            "area_radius needs mode whitted");
+  if (opt->area_samples > 0 && opt->area_radius < 0)
+    return sh__options_fail(err, "area_samples",
+                            "area_samples needs area_radius");
   return SH_OK;
 }
 
@@ -129,13 +148,17 @@ sh_status lmm_render(const sh_scene *scene, const lmm_render_options *opt,
   lmm_scheme scheme = opt->scheme ? opt->scheme : keys.scheme;
   if (scheme == LMM_SCHEME_DEFAULT) scheme = LMM_SCHEME_REFRACT_TRACE;
   ro.refract = scheme != LMM_SCHEME_STRAIGHT;
-  if (opt->refined && scheme != LMM_SCHEME_REFRACT_BOTH)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "refined is a variant of the refract-both scheme");
+  if ((opt->refined || opt->caustic_rays > 0) &&
+      scheme != LMM_SCHEME_REFRACT_BOTH)
+    return sh__options_fail(err, opt->refined ? "refined" : "caustic_rays",
+                            "%s needs scheme refract-both (render.scheme or "
+                            "the default gives %s)",
+                            opt->refined ? "refined" : "caustic_rays",
+                            scheme_names[scheme - 1]);
   if (scheme == LMM_SCHEME_REFRACT_BOTH && opt->mode != LMM_MODE_LMM)
-    return sh_error_set(err, SH_ERR_ARG,
-                        "the refract-both scheme needs mode lmm: refracted "
-                        "visibility comes from the light mesh");
+    return sh__options_fail(err, "scheme",
+                            "scheme refract-both needs mode lmm: refracted "
+                            "visibility comes from the light mesh");
   double h = opt->mesh_step > 0             ? opt->mesh_step
              : keys.mesh_step > 0          ? keys.mesh_step
                                            : lmm_default_step(scene);

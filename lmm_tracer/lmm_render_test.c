@@ -73,7 +73,20 @@ static void test_options(void) {
   SH_CHECK(lmm_render_options_check(&o, &err) == SH_OK);
   SH_CHECK(lmm_render_options_set(&o, "mode", "whitted", &err) == SH_OK);
   SH_CHECK(lmm_render_options_check(&o, &err) == SH_ERR_ARG &&
-           strstr(err.message, "refined needs mode lmm"));
+           strstr(err.message, "refined needs mode lmm") &&
+           !strcmp(err.path, "refined"));
+  /* An option that would not apply is refused with its key. */
+  lmm_render_options w;
+  lmm_render_options_init(&w);
+  SH_CHECK(lmm_render_options_set(&w, "area_samples", "4", &err) == SH_OK);
+  SH_CHECK(lmm_render_options_check(&w, &err) == SH_ERR_ARG &&
+           !strcmp(err.path, "area_samples") &&
+           !strcmp(err.message, "area_samples needs area_radius"));
+  lmm_render_options_init(&w);
+  SH_CHECK(lmm_render_options_set(&w, "kl", "3", &err) == SH_OK);
+  SH_CHECK(lmm_render_options_check(&w, &err) == SH_ERR_ARG &&
+           !strcmp(err.path, "kl") &&
+           !strcmp(err.message, "kl needs mode lmm"));
 }
 
 /* Each mode equals sh_render_reference with the same hook. */

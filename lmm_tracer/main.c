@@ -149,6 +149,16 @@ static void warn_noise(const lmm_render_stats *st) {
           ceil(st->spp * ratio * ratio), 100 * NOISE_WARNING / 2);
 }
 
+/* An error about the renderer's options, which name them by key
+ * ("area_radius needs mode whitted"), with the command line's names
+ * ("--area-radius needs --mode whitted"). */
+static int report_options(const sh_error *err) {
+  char text[sizeof err->message + 256];
+  sh_cli_option_names(&tool, err->message, text, sizeof text);
+  sh_cli_error(TOOL, "%s", text);
+  return SH_EXIT_BAD_INPUT;
+}
+
 int main(int argc, char **argv) {
   sh_error err;
   lmm_render_options opt;
@@ -160,7 +170,7 @@ int main(int argc, char **argv) {
   int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
   if (lmm_render_options_check(&scratch, &err) != SH_OK) {
-    sh_cli_error(TOOL, "%s", err.message);
+    report_options(&err);
     sh_cli_render_free(&r);
     sh_scene_free(scene);
     return SH_EXIT_BAD_INPUT;
@@ -184,7 +194,11 @@ int main(int argc, char **argv) {
   if (status == SH_OK)
     status = write_outputs(&r, &img, exposure, &st, &err);
   rc = SH_EXIT_OK;
-  if (status != SH_OK) {
+  if (status == SH_ERR_ARG && !err.file[0] && err.path[0]) {
+    /* An error about the options (the key is an option's): in the
+     * command line's names. */
+    rc = report_options(&err);
+  } else if (status != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
   } else {
     if (!r.quiet) warn_noise(&st);
