@@ -240,8 +240,8 @@ int main(int argc, char **argv) {
   int np = 0, nl = 0;
   if ((a.sweep_planes && (np = parse_list(a.sweep_planes, sweep_p, 32)) <= 0) ||
       (a.sweep_lattice && (nl = parse_list(a.sweep_lattice, sweep_l, 32)) <= 0)) {
-    fprintf(stderr, "%s: --sweep-planes and --sweep-lattice expect "
-                    "comma-separated counts >= 1\n", TOOL);
+    sh_cli_error(TOOL, "--sweep-planes, --sweep-lattice: expected "
+                       "comma-separated counts >= 1");
     return SH_EXIT_BAD_INPUT;
   }
   if (!parsed.noperands) {

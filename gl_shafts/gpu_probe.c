@@ -34,8 +34,10 @@ int main(int argc, char **argv) {
   if (!strcmp(name, "auto")) backend = GS_BACKEND_AUTO;
   else if (!strcmp(name, "osmesa")) backend = GS_BACKEND_OSMESA;
   else if (strcmp(name, "egl")) {
-    fprintf(stderr, "%s: the backend is egl, auto or osmesa, not '%s'\n",
-            tool.name, name);
+    sh_cli_error(tool.name,
+                 "backend: unknown value '%s'; expected one of: egl, auto, "
+                 "osmesa",
+                 name);
     return SH_EXIT_BAD_INPUT;
   }
   static char devices[16384];

@@ -258,7 +258,7 @@ int main(int argc, char **argv) {
     sh_status st = counting >= 0 ? count(scenes[i], counting, w, h, frames, backend, &err)
                                  : bench(scenes[i], w, h, frames, backend, &err);
     if (st != SH_OK) {
-      fprintf(stderr, "%s: %s: %s\n", TOOL, scenes[i], err.message);
+      sh_cli_error(TOOL, "%s: %s", scenes[i], err.message);
       rc = 1;
     }
   }

@@ -22,7 +22,10 @@ mkdir "$out"
 "$tool" >/dev/null 2>&1; check "no arguments" 2 $?
 "$tool" "$data/point_medium.json" -o "$out/a.pov" 2>/dev/null; check "missing --to" 2 $?
 "$tool" "$data/point_medium.json" --to pov 2>/dev/null; check "missing -o" 2 $?
-"$tool" "$data/point_medium.json" --to maya -o "$out/a.pov" 2>/dev/null; check "bad --to" 2 $?
+"$tool" "$data/point_medium.json" --to maya -o "$out/a.pov" 2>"$dir/err"; check "bad --to" 2 $?
+message_has "bad --to" "$dir/err" "scene_export: error: --to: unknown value 'maya'; expected one of: pov, blender, json"
+"$tool" "$data/point_medium.json" --to pov 2>"$dir/err"
+message_has "missing -o" "$dir/err" "scene_export: error: -o OUT is required"
 "$tool" "$data/point_medium.json" --to pov -o "$out/a.pov" --quality best 2>/dev/null
 check "bad --quality" 2 $?
 "$tool" "$data/point_medium.json" --to pov -o "$out/a.pov" --bogus 2>/dev/null
