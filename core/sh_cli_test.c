@@ -130,6 +130,22 @@ int main(void) {
   rmdir(path);
   rmdir(dir);
 
+  /* A directory where no file can be made is refused before the work, even
+   * for root (who passes access()); the probe leaves nothing behind. */
+  SH_CHECK(!sh_cli_check_output("t", "-o", "/proc/x.png", "png", 0));
+  char tmp[] = "/tmp/sh_cli_probe_XXXXXX", out[64];
+  SH_CHECK(mkdtemp(tmp) != NULL);
+  snprintf(out, sizeof out, "%s/x.png", tmp);
+  SH_CHECK(sh_cli_check_output("t", "-o", out, "png", 0));
+  SH_CHECK(rmdir(tmp) == 0); /* empty: the probe file is gone */
+
+  /* A renderer's message about its options by key, in the tool's names:
+   * words only, not parts of dotted or hyphenated names. */
+  char named[128];
+  sh_cli_option_names(&tool, "level needs render.level, level-x and level",
+                      named, sizeof named);
+  SH_CHECK(!strcmp(named, "--level needs render.level, level-x and --level"));
+
   SH_CHECK(sh_exit_code(SH_ERR_SCENE) == SH_EXIT_BAD_INPUT);
   SH_CHECK(sh_exit_code(SH_ERR_DEVICE) == SH_EXIT_FAILURE);
   SH_TEST_DONE();
