@@ -96,8 +96,15 @@ sh_status lmm_render_options_set(lmm_render_options *opt, const char *key,
  * "volume"), or NULL for an option that takes a number. */
 const char *const *lmm_render_option_choices(const char *key);
 
-/* The checks that need no scene (refined needs lmm mode; area_radius needs
- * whitted mode). lmm_render makes them too. */
+/* The checks that need no scene: an option given where it does not apply
+ * is refused (SH_ERR_ARG), not ignored. refined and caustic_rays need mode
+ * lmm and scheme refract-both (when a scheme is given; lmm_render checks
+ * the scene's); mesh_step, kl and volume exact need mode lmm; area_radius
+ * needs mode whitted; area_samples needs area_radius. The error's key
+ * (sh_error_key) is the option, and the message names options by key and
+ * value ("area_radius needs mode whitted"), so that a command line can put
+ * its own names in their place (sh_cli_option_names). lmm_render makes
+ * these checks too. */
 sh_status lmm_render_options_check(const lmm_render_options *opt,
                                    sh_error *err);
 
