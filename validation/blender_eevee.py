@@ -2,7 +2,7 @@
 #
 # scene_export's Blender script fixes EEVEE's volumetric quality at the
 # settings measured best (2 px tiles, 256 slices, 32 shadow samples, TAA 64
-# in final quality; docs/scene_export.md, EEVEE: 8 px tiles cost about 19
+# in final quality; docs/scene_export.md, EEVEE: 8 px tiles cost about 18
 # points of mean_rel on a point light); the validation sweeps it for its
 # speed-against-error curves, and scene_export/eevee_limits.py for the
 # figures. Run this file before the exported script, in the same Blender
