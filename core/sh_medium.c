@@ -1,6 +1,7 @@
 #include "sh_medium.h"
 
 #include <math.h>
+#include <stdio.h>
 
 double sh_phase_eval(const sh_phase *phase, double c) {
   switch (phase->type) {
@@ -227,4 +228,30 @@ int sh_scene_camera_at_light(const sh_scene *scene) {
     if (sh_length(sh_sub(p, scene->camera.position)) <= r) return i;
   }
   return -1;
+}
+
+const char *sh_medium_type_name(sh_medium_type type) {
+  switch (type) {
+  case SH_MEDIUM_HOMOGENEOUS: return "homogeneous";
+  case SH_MEDIUM_HEIGHT_FOG: return "height_fog";
+  }
+  return "unknown";
+}
+
+sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
+                                        sh_error *err) {
+  const sh_medium *m = &scene->medium;
+  if (!m->present || m->type == SH_MEDIUM_HOMOGENEOUS) return SH_OK;
+  sh_error_set(err, SH_ERR_SCENE,
+               "%s renders homogeneous media only, not a medium of type '%s'; "
+               "lmm_tracer renders it (docs/scene-format.md, \"Non-uniform "
+               "media\")",
+               who, sh_medium_type_name(m->type));
+  if (err) {
+    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+    err->line = m->line;
+    err->column = m->column;
+    snprintf(err->path, sizeof err->path, "medium.type");
+  }
+  return SH_ERR_SCENE;
 }

@@ -97,6 +97,16 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
                                  double a, double b, double u,
                                  double *inv_pdf);
 
+/* For the renderers and exporters that render homogeneous media only:
+ * SH_ERR_SCENE, located at the scene's medium.type and naming the medium
+ * type and `who` (the tool), if the scene's medium is of another kind;
+ * SH_OK otherwise. */
+sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
+                                        sh_error *err);
+
+/* The name of a medium type as the scene format spells it. */
+const char *sh_medium_type_name(sh_medium_type type);
+
 /* The nearest a ray is taken to pass to a point or spot light when the
  * light it scatters is integrated: 1e-4 of the diagonal of the medium's
  * box (0 without a medium). The in-scattered radiance of a ray through a

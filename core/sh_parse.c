@@ -21,8 +21,14 @@ static const char *const top_keys[] = {
     "lights", "materials", "shapes", "render",     NULL};
 static const char *const camera_keys[] = {
     "position", "look_at", "up", "fov_y_deg", "width", "height", NULL};
-static const char *const medium_keys[] = {"sigma_s", "sigma_a", "phase",
-                                          "bounds", NULL};
+static const char *const medium_keys[] = {"type", "sigma_s", "sigma_a",
+                                          "phase", "bounds", NULL};
+static const char *const height_fog_keys[] = {"base_height", "scale_height",
+                                              NULL};
+/* In the order of sh_medium_type; "atmosphere" is in the contract but not
+ * implemented yet (issue 12): it is named so that it gets its own error. */
+static const char *const medium_type_names[] = {"homogeneous", "height_fog",
+                                                "atmosphere", NULL};
 static const char *const bounds_keys[] = {"min", "max", NULL};
 static const char *const phase_keys[] = {"type", NULL};
 static const char *const phase_hg_keys[] = {"g", NULL};
@@ -114,10 +120,32 @@ sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   sh_medium *m = &p->scene->medium;
   json_t *o, *b;
   sh_status st;
+  int type;
   if ((st = sh__object(c, root, "medium", 0, &o)) || !o) return st;
   sh__push_key(c, "medium");
-  if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys), "the medium")) ||
-      (st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__quantity, &m->sigma_s)) ||
+  if ((st = sh__choice(c, o, "type", 0, medium_type_names, 0, "medium type",
+                       &type)))
+    return st;
+  if (type == 2)
+    return sh__fail_at(c, "type", SH_ERR_SCENE,
+                       "the medium type 'atmosphere' is not implemented yet "
+                       "(issue 12); homogeneous and height_fog are");
+  m->type = (sh_medium_type)type;
+  sh__where(c, json_object_get(o, "type") ? "type" : NULL, &m->line,
+            &m->column);
+  if (m->type == SH_MEDIUM_HEIGHT_FOG) {
+    if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys, height_fog_keys),
+                             "a medium of type 'height_fog'")) ||
+        (st = sh__number(c, o, "base_height", 0, 0, sh__any,
+                         &m->base_height)) ||
+        (st = sh__number(c, o, "scale_height", 1, 0, sh__gt0,
+                         &m->scale_height)))
+      return st;
+  } else if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys),
+                                  "a homogeneous medium"))) {
+    return st;
+  }
+  if ((st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__quantity, &m->sigma_s)) ||
       (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__quantity, &m->sigma_a)) ||
       (st = parse_phase(p, o)) || (st = sh__object(c, o, "bounds", 1, &b)))
     return st;

@@ -50,6 +50,16 @@ static void locate(sh__pctx *c, int at_key) {
   if (found) sh__json_linecol(c->text, off, &e->line, &e->column);
 }
 
+void sh__where(sh__pctx *c, const char *key, int *line, int *column) {
+  size_t off = 0;
+  *line = *column = 0;
+  if (key) sh__push_key(c, key);
+  int depth = c->depth < SH__PATH_MAX ? c->depth : SH__PATH_MAX;
+  if (c->text && sh__json_locate(c->text, c->len, c->path, depth, 0, &off))
+    sh__json_linecol(c->text, off, line, column);
+  if (key) sh__pop(c);
+}
+
 static sh_status vfail(sh__pctx *c, int at_key, sh_status status,
                        const char *fmt, va_list ap) {
   sh_error *e = c->err;

@@ -118,6 +118,10 @@ sh_status sh__wrong(sh__pctx *c, const json_t *v, const char *expected);
  * object, describing what it should have been. */
 sh_status sh__missing(sh__pctx *c, const char *key, const char *expected);
 
+/* The line and column of member `key` of the current object in the text
+ * (of the current object when `key` is NULL); 0, 0 if not found. */
+void sh__where(sh__pctx *c, const char *key, int *line, int *column);
+
 sh_status sh__number(sh__pctx *c, json_t *obj, const char *key, int required,
                      double def, sh__range r, double *out);
 /* Integers in [lo, hi]; a real with an integral value is accepted. */

@@ -485,6 +485,29 @@ static const bad_case bad_cases[] = {
           "\"max\": [1, 1, 1]}}}",
      SH_ERR_SCENE, 3, 65, "medium.phase.g",
      "unknown key 'g' in a phase function of type 'isotropic'"},
+    /* Medium types: each accepts only its own keys. */
+    {HEAD "\"medium\": {\"sigma_s\": [1, 1, 1], \"scale_height\": 2, "
+          "\"bounds\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]}}}",
+     SH_ERR_SCENE, 3, 34, "medium.scale_height",
+     "unknown key 'scale_height' in a homogeneous medium"},
+    {HEAD "\"medium\": {\"type\": \"height_fog\", \"sigma_s\": [1, 1, 1], "
+          "\"bounds\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1]}}}",
+     SH_ERR_SCENE, 3, 11, "medium", "scale_height"},
+    {HEAD "\"medium\": {\"type\": \"height_fog\", \"scale_height\": 0, "
+          "\"sigma_s\": [1, 1, 1], \"bounds\": {\"min\": [0, 0, 0], "
+          "\"max\": [1, 1, 1]}}}",
+     SH_ERR_SCENE, 3, 50, "medium.scale_height", "found the number 0"},
+    {HEAD "\"medium\": {\"type\": \"height_fog\", \"scale_height\": 1, "
+          "\"center\": [0, 0, 0], \"sigma_s\": [1, 1, 1], \"bounds\": "
+          "{\"min\": [0, 0, 0], \"max\": [1, 1, 1]}}}",
+     SH_ERR_SCENE, 3, 53, "medium.center",
+     "unknown key 'center' in a medium of type 'height_fog'"},
+    {HEAD "\"medium\": {\"type\": \"atmosphere\", \"sigma_s\": [1, 1, 1]}}",
+     SH_ERR_SCENE, 3, 20, "medium.type",
+     "the medium type 'atmosphere' is not implemented yet"},
+    {HEAD "\"medium\": {\"type\": \"heigth_fog\", \"sigma_s\": [1, 1, 1]}}",
+     SH_ERR_SCENE, 3, 20, "medium.type",
+     "unknown medium type 'heigth_fog'; did you mean 'height_fog'?"},
     /* Ranges. */
     {HEAD "\"medium\": {\"sigma_s\": [0.1, -0.5, 0], \"bounds\": {\"min\": "
           "[0, 0, 0], \"max\": [1, 1, 1]}}}",

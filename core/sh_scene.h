@@ -56,6 +56,8 @@ typedef struct sh_medium {
   double scale_height;      /* height fog: H > 0 */
   sh_phase phase;
   sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax */
+  int line, column; /* of medium.type (else of the medium) in the file; 0
+                       if unknown: where tools that refuse a kind point */
 } sh_medium;
 
 typedef enum sh_light_type {

@@ -43,7 +43,9 @@ static int same_camera(const sh_camera *a, const sh_camera *b) {
 static int same_medium(const sh_medium *a, const sh_medium *b) {
   if (a->present != b->present) return 0;
   return !a->present ||
-         (same_vec(a->sigma_s, b->sigma_s) && same_vec(a->sigma_a, b->sigma_a) &&
+         (a->type == b->type && a->base_height == b->base_height &&
+          a->scale_height == b->scale_height &&
+          same_vec(a->sigma_s, b->sigma_s) && same_vec(a->sigma_a, b->sigma_a) &&
           a->phase.type == b->phase.type && a->phase.g == b->phase.g &&
           same_vec(a->bmin, b->bmin) && same_vec(a->bmax, b->bmax));
 }

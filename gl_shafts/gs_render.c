@@ -1,5 +1,7 @@
 #include "gs_render.h"
 
+#include "sh_medium.h"
+
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -177,7 +179,8 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   if (st != SH_OK) return st;
   if (!opt) opt = &defaults;
   if ((st = gs_options_check(opt, err)) != SH_OK ||
-      (st = sh_crop_check(&opt->crop, &scene->camera, err)) != SH_OK)
+      (st = sh_crop_check(&opt->crop, &scene->camera, err)) != SH_OK ||
+      (st = sh_medium_require_homogeneous(scene, "gl_shafts", err)) != SH_OK)
     return st;
   if (scene->nlights > GS_MAX_LIGHTS) {
     st = sh_error_set(err, SH_ERR_SCENE,
@@ -270,7 +273,9 @@ sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
                         "the scene's lights changed in number (%d, was %d): "
                         "make a new renderer",
                         r->scene->nlights, r->nlights);
-  sh_status st = gs__context_make_current(r->ctx, err);
+  sh_status st = sh_medium_require_homogeneous(r->scene, "gl_shafts", err);
+  if (st != SH_OK) return st;
+  st = gs__context_make_current(r->ctx, err);
   if (st != SH_OK) return st;
   st = sync(r, changed, err);
   gs__context_release(r->ctx);

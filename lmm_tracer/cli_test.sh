@@ -18,6 +18,11 @@ basic_scene "$dir/good.json" 16 12 "$POINT_LIGHT"
 "$tool" "$dir/good.json" -o "$dir/x.exr" --mode nonsense >/dev/null 2>&1; check "bad mode" 2 $?
 bad_scenes_refused "$tool" "$dir/good.json"
 camera_at_light_warns "$tool"
+# Height fog renders in the reference mode (issue 12): a finite image.
+height_fog_scene "$dir/good.json" "$dir/fog.json"
+"$tool" "$dir/fog.json" -o "$dir/fog.exr" --spp 2 -q; check "height fog" 0 $?
+[ -s "$dir/fog.exr" ] || { echo "FAIL: height fog: no image"; fail=1; }
+rm -f "$dir/fog.json" "$dir/fog.exr"
 
 "$tool" "$dir/good.json" -o "$dir/a.exr" -o "$dir/a.png" --stats "$dir/a.json" \
   --spp 4 -q; check "good render" 0 $?

@@ -36,6 +36,17 @@ check "unknown option" 2 $?
 check "unquotable POV-Ray name" 2 $?
 grep -q "must consist of letters" "$dir/err" || { echo "FAIL: name message: $(cat "$dir/err")"; fail=1; }
 "$tool" "$dir/missing.json" --to pov -o "$out/a.pov" 2>/dev/null; check "missing scene" 2 $?
+# Height fog (issue 12): POV-Ray and Blender exports refuse it, the json
+# target writes it as it is.
+for to in pov:pov blender:py; do
+  height_fog_refused "$data/point_medium.json" "--to ${to%%:*}" \
+    "$tool" "$dir/fog.json" --to "${to%%:*}" -o "$dir/fog_out.${to##*:}"
+done
+height_fog_scene "$data/point_medium.json" "$dir/fog.json"
+"$tool" "$dir/fog.json" --to json -o "$dir/fog2.json"; check "json keeps height fog" 0 $?
+grep -q '"height_fog"' "$dir/fog2.json" && grep -q '"scale_height": 1' "$dir/fog2.json" \
+  || { echo "FAIL: json export lost the height fog"; fail=1; }
+rm -f "$dir/fog.json" "$dir/fog2.json"
 sed 's/"intensity"/"intensty"/' "$data/point_medium.json" >"$dir/typo.json"
 "$tool" "$dir/typo.json" --to pov -o "$out/a.pov" 2>"$dir/err"; check "misspelled key" 2 $?
 grep -q "typo.json:.*lights\[0\].*did you mean 'intensity'" "$dir/err" \

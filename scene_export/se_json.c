@@ -96,9 +96,16 @@ static json_t *medium(const sh_medium *m) {
   json_t *phase = json_pack("{s:s}", "type", types[m->phase.type]);
   if (phase && m->phase.type == SH_PHASE_HENYEY_GREENSTEIN)
     json_object_set_new(phase, "g", json_real(m->phase.g));
-  return json_pack("{s:o, s:o, s:o, s:{s:o, s:o}}", "sigma_s", vec(m->sigma_s),
-                   "sigma_a", vec(m->sigma_a), "phase", phase, "bounds", "min",
-                   vec(m->bmin), "max", vec(m->bmax));
+  json_t *o = json_pack("{s:o, s:o, s:o, s:{s:o, s:o}}", "sigma_s",
+                        vec(m->sigma_s), "sigma_a", vec(m->sigma_a), "phase",
+                        phase, "bounds", "min", vec(m->bmin), "max",
+                        vec(m->bmax));
+  if (o && m->type == SH_MEDIUM_HEIGHT_FOG) {
+    json_object_set_new(o, "type", json_string("height_fog"));
+    json_object_set_new(o, "base_height", json_real(m->base_height));
+    json_object_set_new(o, "scale_height", json_real(m->scale_height));
+  }
+  return o;
 }
 
 static json_t *light(files *f, const sh_light *l, int i) {

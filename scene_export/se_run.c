@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sh_medium.h"
 #include "sh_parse.h"
 
 const se_target *se_target_find(const char *name) {
@@ -17,6 +18,14 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
   if (!scene || !target || !opt || !out_path || !notes)
     return sh_error_set(err, SH_ERR_ARG, "se_export_scene: a NULL argument");
   se_output out = {0};
+  char who[64];
+  snprintf(who, sizeof who, "the %s exporter", target->name);
+  /* The json target writes the scene as it is; the others render
+   * homogeneous media only so far (issue 12). */
+  if (strcmp(target->name, "json") != 0) {
+    sh_status st = sh_medium_require_homogeneous(scene, who, err);
+    if (st != SH_OK) return st;
+  }
   sh_status st = target->build(scene, opt, out_path, &out, notes, err);
   if (st == SH_OK && notes->failed) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   if (st == SH_OK && strict && notes->count > 0)

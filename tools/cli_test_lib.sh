@@ -172,6 +172,22 @@ huge_refused() { # tool, good scene, sed expression, key (a regex)
   grep -q "huge.json:[0-9]*:[0-9]*: $4" "$dir/err" \
     || { echo "FAIL: huge-value message: $(cat "$dir/err")"; fail=1; }
 }
+# basic_scene's scene with its medium turned into height fog (issue 12).
+height_fog_scene() { # good scene, new file
+  sed 's/"medium": {"sigma_s"/"medium": {"type": "height_fog", "scale_height": 1, "sigma_s"/' \
+    "$1" >"$2"
+}
+# A tool that renders homogeneous media only refuses height fog with 2, a
+# message located at medium.type naming the medium's type, and no output.
+height_fog_refused() { # good scene, what, command... (the output is $dir/fog_out.*)
+  local good=$1 what=$2; shift 2
+  height_fog_scene "$good" "$dir/fog.json"
+  "$@" >/dev/null 2>"$dir/err"; check "$what refuses height fog" 2 $?
+  grep -q "fog.json:[0-9]*:21: medium.type: .*not a medium of type 'height_fog'" "$dir/err" \
+    || { echo "FAIL: $what height-fog message: $(cat "$dir/err")"; fail=1; }
+  ls "$dir" | grep -q '^fog_out' && { echo "FAIL: $what wrote an output"; fail=1; }
+  rm -f "$dir/fog.json"
+}
 # The camera at a point light inside the medium (issue 11): a warning
 # naming the light and the convention's distance, exit 0, finite output.
 camera_at_light_warns() { # tool
