@@ -33,6 +33,7 @@
   X(PFNGLSCISSORPROC, Scissor)                                               \
   X(PFNGLCOLORMASKPROC, ColorMask)                                           \
   X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
+  X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                 \
   X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PFNGLCLIPCONTROLPROC, ClipControl)                                       \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
@@ -142,6 +143,7 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glScissor gs__gl_current->Scissor
 #define glColorMask gs__gl_current->ColorMask
 #define glPolygonOffset gs__gl_current->PolygonOffset
+#define glBindBufferBase gs__gl_current->BindBufferBase
 #define glCullFace gs__gl_current->CullFace
 #define glClipControl gs__gl_current->ClipControl
 #define glReadPixels gs__gl_current->ReadPixels
