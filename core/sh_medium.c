@@ -28,6 +28,13 @@ double sh_phase_eval(const sh_phase *phase, double c) {
   case SH_PHASE_RAYLEIGH:
     /* 1 + c^2 integrates to 16 pi / 3. */
     return 3.0 * (1.0 + c * c) / (16.0 * SH_PI);
+  case SH_PHASE_CORNETTE_SHANKS: {
+    /* Cornette and Shanks 1992: (1 + c^2) / (1 + g^2 - 2 g c)^1.5 times
+     * 3 (1 - g^2) / (8 pi (2 + g^2)). */
+    double g = phase->g, den = 1.0 + g * g - 2.0 * g * c;
+    return 3.0 * (1.0 - g * g) * (1.0 + c * c) /
+           (8.0 * SH_PI * (2.0 + g * g) * den * sqrt(den));
+  }
   }
   return SH_INV_4PI;
 }
@@ -238,20 +245,34 @@ const char *sh_medium_type_name(sh_medium_type type) {
   return "unknown";
 }
 
+/* Fills the location of a refusal. */
+static void refusal_at(const sh_scene *scene, int line, int column,
+                       const char *path, sh_error *err) {
+  if (!err) return;
+  snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+  err->line = line;
+  err->column = column;
+  snprintf(err->path, sizeof err->path, "%s", path);
+}
+
 sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
                                         sh_error *err) {
   const sh_medium *m = &scene->medium;
+  if (m->present && m->phase.type == SH_PHASE_CORNETTE_SHANKS) {
+    sh_error_set(err, SH_ERR_SCENE,
+                 "%s does not render the cornette_shanks phase function yet; "
+                 "lmm_tracer renders it (docs/scene-format.md, \"Non-uniform "
+                 "media\")",
+                 who);
+    refusal_at(scene, m->phase_line, m->phase_column, "medium.phase.type", err);
+    return SH_ERR_SCENE;
+  }
   if (!m->present || m->type == SH_MEDIUM_HOMOGENEOUS) return SH_OK;
   sh_error_set(err, SH_ERR_SCENE,
                "%s renders homogeneous media only, not a medium of type '%s'; "
                "lmm_tracer renders it (docs/scene-format.md, \"Non-uniform "
                "media\")",
                who, sh_medium_type_name(m->type));
-  if (err) {
-    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
-    err->line = m->line;
-    err->column = m->column;
-    snprintf(err->path, sizeof err->path, "medium.type");
-  }
+  refusal_at(scene, m->line, m->column, "medium.type", err);
   return SH_ERR_SCENE;
 }

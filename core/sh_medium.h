@@ -97,10 +97,11 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
                                  double a, double b, double u,
                                  double *inv_pdf);
 
-/* For the renderers and exporters that render homogeneous media only:
- * SH_ERR_SCENE, located at the scene's medium.type and naming the medium
- * type and `who` (the tool), if the scene's medium is of another kind;
- * SH_OK otherwise. */
+/* For the renderers and exporters that render homogeneous media and the
+ * format's first five phase functions only: SH_ERR_SCENE, located at the
+ * scene's medium.phase.type or medium.type and naming `who` (the tool) and
+ * what it cannot render, if the medium has the cornette_shanks phase or is
+ * of another kind than homogeneous; SH_OK otherwise. */
 sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
                                         sh_error *err);
 

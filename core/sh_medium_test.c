@@ -121,7 +121,19 @@ int main(void) {
     ph.type = SH_PHASE_HENYEY_GREENSTEIN;
     ph.g = gs[i];
     SH_CHECK_NEAR(sphere_integral(&ph), 1.0, 1e-6, 0);
+    ph.type = SH_PHASE_CORNETTE_SHANKS;
+    SH_CHECK_NEAR(sphere_integral(&ph), 1.0, 1e-6, 0);
   }
+  /* Cornette-Shanks: the contract's shape (1 + c^2) / (1 + g^2 - 2 g
+   * c)^1.5 up to its constant, and Rayleigh at g = 0. */
+  ph.type = SH_PHASE_CORNETTE_SHANKS;
+  ph.g = 0.8;
+  SH_CHECK_NEAR(sh_phase_eval(&ph, 0.3) / sh_phase_eval(&ph, -0.6),
+                (1.09 / pow(1.64 - 0.48, 1.5)) / (1.36 / pow(1.64 + 0.96, 1.5)),
+                1e-12, 0);
+  ph.g = 0;
+  sh_phase ray = {SH_PHASE_RAYLEIGH, 0};
+  SH_CHECK_NEAR(sh_phase_eval(&ph, 0.4), sh_phase_eval(&ray, 0.4), 1e-15, 0);
   /* Shapes: forward peaks where they should, and the unnormalised forms of
    * the format up to their constants. */
   ph.type = SH_PHASE_NISHITA_HAZY;

@@ -44,7 +44,8 @@ static const char *const render_keys[] = {
 /* In the order of sh_phase_type. */
 static const char *const phase_names[] = {"isotropic",    "henyey_greenstein",
                                           "nishita_hazy", "nishita_murky",
-                                          "rayleigh",     NULL};
+                                          "rayleigh",     "cornette_shanks",
+                                          NULL};
 
 #define MAX_IMAGE_SIZE 65536
 
@@ -101,9 +102,12 @@ static sh_status parse_phase(sh__parser *p, json_t *medium) {
                        &type)))
     return st;
   ph->type = (sh_phase_type)type;
+  sh__where(c, "type", &p->scene->medium.phase_line,
+            &p->scene->medium.phase_column);
   snprintf(what, sizeof what, "a phase function of type '%s'",
            phase_names[type]);
-  if (ph->type == SH_PHASE_HENYEY_GREENSTEIN) {
+  if (ph->type == SH_PHASE_HENYEY_GREENSTEIN ||
+      ph->type == SH_PHASE_CORNETTE_SHANKS) {
     if ((st =
              sh__check_keys(c, o, SH__KEYS(phase_keys, phase_hg_keys), what)) ||
         (st = sh__number(c, o, "g", 1, 0, (sh__range){-1, 1, 1, 1}, &ph->g)))

@@ -502,6 +502,10 @@ static const bad_case bad_cases[] = {
           "{\"min\": [0, 0, 0], \"max\": [1, 1, 1]}}}",
      SH_ERR_SCENE, 3, 53, "medium.center",
      "unknown key 'center' in a medium of type 'height_fog'"},
+    {HEAD "\"medium\": {\"sigma_s\": [1, 1, 1], \"phase\": {\"type\": "
+          "\"cornette_shanks\"}, \"bounds\": {\"min\": [0, 0, 0], "
+          "\"max\": [1, 1, 1]}}}",
+     SH_ERR_SCENE, 3, 43, "medium.phase", "missing required key 'g'"},
     {HEAD "\"medium\": {\"type\": \"atmosphere\", \"sigma_s\": [1, 1, 1]}}",
      SH_ERR_SCENE, 3, 20, "medium.type",
      "the medium type 'atmosphere' is not implemented yet"},

@@ -29,12 +29,14 @@ typedef enum sh_phase_type {
   SH_PHASE_HENYEY_GREENSTEIN,
   SH_PHASE_NISHITA_HAZY,
   SH_PHASE_NISHITA_MURKY,
-  SH_PHASE_RAYLEIGH
+  SH_PHASE_RAYLEIGH,
+  SH_PHASE_CORNETTE_SHANKS /* the contract's "Non-uniform media" */
 } sh_phase_type;
 
 typedef struct sh_phase {
   sh_phase_type type;
-  double g; /* Henyey-Greenstein asymmetry, (-1, 1); 0 for the others */
+  double g; /* Henyey-Greenstein and Cornette-Shanks asymmetry, (-1, 1); 0
+               for the others */
 } sh_phase;
 
 /* The kinds of medium (docs/scene-format.md, "Non-uniform media"). Only
@@ -58,6 +60,7 @@ typedef struct sh_medium {
   sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax */
   int line, column; /* of medium.type (else of the medium) in the file; 0
                        if unknown: where tools that refuse a kind point */
+  int phase_line, phase_column; /* of medium.phase.type; 0 if unknown */
 } sh_medium;
 
 typedef enum sh_light_type {

@@ -43,6 +43,7 @@ run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 bad_scenes_refused "$tool" "$dir/good.json"
 camera_at_light_warns "$tool"
 height_fog_refused "$dir/good.json" gl_shafts "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q
+cornette_shanks_refused "$dir/good.json" gl_shafts "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q
 # A finite double that is no float (a camera 1e39 away) never becomes a
 # shader literal or a uniform: a clear error, not a shader that fails to
 # compile.

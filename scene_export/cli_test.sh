@@ -41,6 +41,8 @@ grep -q "must consist of letters" "$dir/err" || { echo "FAIL: name message: $(ca
 for to in pov:pov blender:py; do
   height_fog_refused "$data/point_medium.json" "--to ${to%%:*}" \
     "$tool" "$dir/fog.json" --to "${to%%:*}" -o "$dir/fog_out.${to##*:}"
+  cornette_shanks_refused "$data/point_medium.json" "--to ${to%%:*}" \
+    "$tool" "$dir/fog.json" --to "${to%%:*}" -o "$dir/fog_out.${to##*:}"
 done
 height_fog_scene "$data/point_medium.json" "$dir/fog.json"
 "$tool" "$dir/fog.json" --to json -o "$dir/fog2.json"; check "json keeps height fog" 0 $?

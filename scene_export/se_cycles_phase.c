@@ -18,6 +18,7 @@ double se_phase_to_hg(const sh_phase *phase, int *exact) {
   case SH_PHASE_NISHITA_MURKY:
     return (50.0 / 83.0) * (16.0 / 17.0);
   case SH_PHASE_RAYLEIGH:
+  case SH_PHASE_CORNETTE_SHANKS: /* refused before (se_export_scene) */
     return 0.0;
   }
   return 0.0;

@@ -134,6 +134,7 @@ const char *se_phase_name(sh_phase_type type) {
   case SH_PHASE_NISHITA_HAZY: return "nishita_hazy";
   case SH_PHASE_NISHITA_MURKY: return "nishita_murky";
   case SH_PHASE_RAYLEIGH: return "rayleigh";
+  case SH_PHASE_CORNETTE_SHANKS: return "cornette_shanks";
   }
   return "isotropic";
 }

@@ -92,9 +92,10 @@ static json_t *camera(const sh_camera *c) {
 
 static json_t *medium(const sh_medium *m) {
   static const char *types[] = {"isotropic", "henyey_greenstein", "nishita_hazy",
-                                "nishita_murky", "rayleigh"};
+                                "nishita_murky", "rayleigh", "cornette_shanks"};
   json_t *phase = json_pack("{s:s}", "type", types[m->phase.type]);
-  if (phase && m->phase.type == SH_PHASE_HENYEY_GREENSTEIN)
+  if (phase && (m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ||
+                m->phase.type == SH_PHASE_CORNETTE_SHANKS))
     json_object_set_new(phase, "g", json_real(m->phase.g));
   json_t *o = json_pack("{s:o, s:o, s:o, s:{s:o, s:o}}", "sigma_s",
                         vec(m->sigma_s), "sigma_a", vec(m->sigma_a), "phase",

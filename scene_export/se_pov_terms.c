@@ -42,6 +42,8 @@ se_phase_pov se_phase_to_pov(const sh_phase *phase) {
     p.mean = 0.799372013 * (4.0 / 3.0);
     p.comment = "Rayleigh, POV-Ray type 4";
     break;
+  case SH_PHASE_CORNETTE_SHANKS: /* refused before (se_export_scene) */
+    break;
   }
   return p;
 }
