@@ -1,14 +1,17 @@
 /* The reference renderer: Whitted ray tracing (direct light with hard
  * shadows through semitransparent surfaces, mirror reflection, refraction
  * weighted by k_t as in formula 2 of Debelov et al. 2008) plus single
- * scattering in the homogeneous medium along every ray segment, seen
- * directly and through reflection and refraction.
+ * scattering in the medium (homogeneous or height fog) along every ray
+ * segment, seen directly and through reflection and refraction. The medium
+ * answers for optical depth, transmittance and the coefficients and phase at
+ * each sample (sh_medium.h); the transmittances are exact (closed forms).
  *
  * Every pixel is sampled at its centre. The in-scattering integral is
  * estimated per ray segment and light with `spp` stratified samples:
  * equiangular sampling over the part of the segment inside a spot's cone
- * for point and spot lights (the 1/r^2 cancels), transmittance-proportional
- * sampling for directional lights. Accumulation is in double precision and
+ * for point and spot lights (the 1/r^2 cancels), sampling by the mean
+ * channel's extinction and transmittance for directional lights
+ * (sh_medium_sample_distance). Accumulation is in double precision and
  * every pixel seeds its own random stream, so the image depends only on the
  * scene, spp and seed, not on the thread count. */
 #ifndef SH_REFERENCE_H
