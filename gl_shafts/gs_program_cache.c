@@ -3,6 +3,7 @@
 #include "gs_program.h"
 
 #include "shafts.h"
+#include "sh_file.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -42,7 +43,7 @@ void gs__program_cache_dir(char *dir, size_t size) {
   } else if (home && home[0] == '/') {
     n = snprintf(dir, size, "%s/.cache/shafts/programs", home);
   }
-  /* A directory whose files' names (and their temporaries') would not fit
+  /* A directory whose files' names would not fit
    * the buffers (PATH_MAX) turns the cache off rather than being cut to
    * another directory. */
   if (n < 0 || (size_t)n + GS__CACHE_NAME_ROOM >= size)
@@ -279,27 +280,29 @@ int gs__program_cache_store_key(const char *dir, const char *key, size_t len,
   GLenum format = 0;
   glGetProgramBinary(prog, size, &got, &format, bin);
   int ok = got > 0 && glGetError() == GL_NO_ERROR && gs__mkdirs(dir);
-  char path[4096], tmp[4200];
-  static atomic_uint counter;
+  char path[4096];
+  char *file = NULL;
   if (ok) {
+    /* One write through sh_file_write_atomic: an unnamed temporary named
+     * only when complete, so a killed process leaves no partial entry. */
     gs__program_cache_file(dir, key, len, path, sizeof path);
-    snprintf(tmp, sizeof tmp, "%s.%ld.%u.tmp", path, (long)getpid(),
-             atomic_fetch_add(&counter, 1u));
-    int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
     gs__cache_header h;
     memcpy(h.magic, GS__CACHE_MAGIC, 8);
     h.format = format;
     h.key_len = (uint32_t)len;
     h.binary_len = (uint32_t)got;
-    ok = fd >= 0 && gs__transfer(fd, &h, sizeof h, 1) &&
-         gs__transfer(fd, (void *)key, len, 1) && gs__transfer(fd, bin, (size_t)got, 1);
-    if (fd >= 0 && close(fd) != 0)
-      ok = 0;
-    if (ok && rename(tmp, path) != 0)
-      ok = 0;
-    if (!ok && fd >= 0)
-      unlink(tmp);
+    size_t n = sizeof h + len + (size_t)got;
+    file = malloc(n);
+    ok = file != NULL;
+    if (ok) {
+      memcpy(file, &h, sizeof h);
+      memcpy(file + sizeof h, key, len);
+      memcpy(file + sizeof h + len, bin, (size_t)got);
+      sh_error err = {0};
+      ok = sh_file_write_atomic(path, file, n, &err) == SH_OK;
+    }
   }
+  free(file);
   free(bin);
   if (ok)
     gs__cache_evict(dir);

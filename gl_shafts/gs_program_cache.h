@@ -23,8 +23,10 @@
  * Failures never fail a render: a directory that cannot be made or
  * written, a short or foreign file, a driver with no binary formats
  * (GL_NUM_PROGRAM_BINARY_FORMATS is 0) all fall back to compiling, and
- * nothing is printed. Writes are atomic (a temporary file renamed), so
- * processes and threads may share the directory.
+ * nothing is printed. Writes are atomic (sh_file_write_atomic: an unnamed
+ * temporary given its name only when complete, so even a killed process
+ * leaves no partial entry), so processes and threads may share the
+ * directory.
  *
  * On Mesa the binary holds the linked program in Mesa's intermediate form,
  * not llvmpipe's machine code: the JIT compilation at the first draw is
@@ -60,7 +62,7 @@ void gs__program_cache_store(GLuint prog, const gs__glsl *vs,
  * returns 1 if a file was written. */
 void gs__program_cache_dir(char *dir, size_t size);
 /* Room the cache keeps after the directory in a buffer of its size: "/",
- * 16 hex digits, ".bin" and a temporary's ".<pid>.<n>.tmp". A longer
+ * 16 hex digits and ".bin", with margin. A longer
  * directory turns the cache off (never cut to another directory). */
 #define GS__CACHE_NAME_ROOM 64
 void gs__program_cache_driver(char *buf, size_t size);
