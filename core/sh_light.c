@@ -5,6 +5,14 @@
 sh_status sh_light_prepare(sh_light *light, sh_vec3 camera_up, int has_up,
                            sh_error *err) {
   light->direction = sh_normalize(light->direction);
+  light->disk_cos_half = 2.0; /* no direction is inside */
+  light->disk_solid_angle = 0.0;
+  if (light->type == SH_LIGHT_DIRECTIONAL && light->angular_diameter_deg > 0) {
+    double half = 0.5 * light->angular_diameter_deg * SH_PI / 180.0;
+    double s = sin(0.5 * half);
+    light->disk_cos_half = cos(half);
+    light->disk_solid_angle = 4.0 * SH_PI * s * s;
+  }
   if (light->type == SH_LIGHT_SPOT) {
     double ro = light->outer_deg * SH_PI / 180.0;
     double ri = light->inner_deg * SH_PI / 180.0;
@@ -119,4 +127,18 @@ sh_vec3 sh_light_incident(const sh_light *light, sh_vec3 p, sh_vec3 *wi,
     if (light->has_map) e = sh_mul(e, sh_light_map_value(light, p));
   }
   return e;
+}
+
+sh_vec3 sh_light_disk_radiance(const sh_light *light, sh_vec3 d) {
+  if (light->type != SH_LIGHT_DIRECTIONAL || !(light->disk_solid_angle > 0) ||
+      -sh_dot(d, light->direction) < light->disk_cos_half)
+    return sh_v3s(0.0);
+  return sh_scale(light->irradiance, 1.0 / light->disk_solid_angle);
+}
+
+sh_vec3 sh_scene_background_radiance(const sh_scene *scene, sh_vec3 d) {
+  sh_vec3 L = scene->background;
+  for (int i = 0; i < scene->nlights; i++)
+    L = sh_add(L, sh_light_disk_radiance(&scene->lights[i], d));
+  return L;
 }

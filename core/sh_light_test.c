@@ -80,5 +80,54 @@ int main(void) {
   SH_CHECK_NEAR(m.z, 1.0, 1e-6, 0);
   m = sh_light_map_value(&d, sh_v3(2.5, 0, 0.5)); /* outside the window */
   SH_CHECK(sh_is_black(m));
+
+  /* The sun's disk: irradiance / (2 pi (1 - cos(half angle))) inside the
+   * cone around the direction the light comes from, 0 outside, the map
+   * playing no part. */
+  d.angular_diameter_deg = 4;
+  SH_CHECK(sh_light_prepare(&d, sh_v3(0, 1, 0), 0, NULL) == SH_OK);
+  double omega = 2 * SH_PI * (1 - cos(2 * SH_PI / 180));
+  SH_CHECK_NEAR(d.disk_solid_angle, omega, 1e-12, 0);
+  e = sh_light_disk_radiance(&d, sh_v3(0, 1, 0));
+  SH_CHECK_NEAR(e.x, 5.0 / omega, 1e-12, 0);
+  double in = 1.99 * SH_PI / 180, out = 2.01 * SH_PI / 180;
+  e = sh_light_disk_radiance(&d, sh_v3(sin(in), cos(in), 0));
+  SH_CHECK_NEAR(e.z, 5.0 / omega, 1e-12, 0);
+  SH_CHECK(sh_is_black(sh_light_disk_radiance(&d, sh_v3(0, 0, 1))));
+  SH_CHECK(sh_is_black(
+      sh_light_disk_radiance(&d, sh_v3(0, cos(out), sin(out)))));
+  SH_CHECK(sh_is_black(sh_light_disk_radiance(&d, sh_v3(0, -1, 0))));
+  /* The Sun's 0.53 degrees: the small-angle form keeps its digits. */
+  d.angular_diameter_deg = 0.53;
+  sh_light_prepare(&d, sh_v3(0, 1, 0), 0, NULL);
+  double th = 0.265 * SH_PI / 180;
+  SH_CHECK_NEAR(d.disk_solid_angle,
+                SH_PI * th * th * (1 - th * th / 12 + pow(th, 4) / 360), 1e-13, 0);
+  /* No disk without a diameter, and none for other lights. */
+  d.angular_diameter_deg = 0;
+  sh_light_prepare(&d, sh_v3(0, 1, 0), 0, NULL);
+  SH_CHECK(sh_is_black(sh_light_disk_radiance(&d, sh_v3(0, 1, 0))));
+  SH_CHECK(sh_is_black(sh_light_disk_radiance(&p, sh_v3(0, 0, -1))));
+
+  /* The background a ray sees: the scene's plus every disk. */
+  sh_light two[2] = {d, d};
+  two[0].angular_diameter_deg = 4;
+  two[1].angular_diameter_deg = 6;
+  two[1].irradiance = sh_v3s(2);
+  sh_light_prepare(&two[0], sh_v3(0, 1, 0), 0, NULL);
+  sh_light_prepare(&two[1], sh_v3(0, 1, 0), 0, NULL);
+  sh_scene sc;
+  memset(&sc, 0, sizeof sc);
+  sc.background = sh_v3(0.1, 0.2, 0.3);
+  sc.nlights = 2;
+  sc.lights = two;
+  double omega6 = 2 * SH_PI * (1 - cos(3 * SH_PI / 180));
+  e = sh_scene_background_radiance(&sc, sh_v3(0, 1, 0));
+  SH_CHECK_NEAR(e.y, 0.2 + 5.0 / omega + 2.0 / omega6, 1e-12, 0);
+  double mid = 2.5 * SH_PI / 180; /* in the wider disk only */
+  e = sh_scene_background_radiance(&sc, sh_v3(sin(mid), cos(mid), 0));
+  SH_CHECK_NEAR(e.z, 0.3 + 2.0 / omega6, 1e-12, 0);
+  e = sh_scene_background_radiance(&sc, sh_v3(1, 0, 0));
+  SH_CHECK_NEAR(e.x, 0.1, 1e-15, 0);
   SH_TEST_DONE();
 }

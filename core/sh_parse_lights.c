@@ -12,8 +12,8 @@ static const char *const point_keys[] = {"position", "intensity", NULL};
 static const char *const spot_keys[] = {
     "position",        "direction", "look_at",   "intensity", "outer_angle_deg",
     "inner_angle_deg", "exponent",  "light_map", NULL};
-static const char *const directional_keys[] = {"direction", "irradiance",
-                                               "light_map", NULL};
+static const char *const directional_keys[] = {
+    "direction", "irradiance", "angular_diameter_deg", "light_map", NULL};
 static const char *const spot_map_keys[] = {"image", "up", NULL};
 static const char *const directional_map_keys[] = {"image", "origin", "u", "v",
                                                    NULL};
@@ -144,7 +144,10 @@ sh_status sh__parse_light(sh__parser *p, json_t *o, void *item) {
   case SH_LIGHT_DIRECTIONAL:
     if ((st = sh__direction(c, o, "direction", 1, &l->direction, NULL)) ||
         (st = sh__vec3(c, o, "irradiance", 1, sh_v3s(0), sh__quantity,
-                       &l->irradiance)))
+                       &l->irradiance)) ||
+        (st = sh__number(c, o, "angular_diameter_deg", 0, 0,
+                         (sh__range){0, SH_SUN_DISK_MAX_DEG, 0, 0},
+                         &l->angular_diameter_deg)))
       return st;
     break;
   }

@@ -478,6 +478,19 @@ static const bad_case bad_cases[] = {
           "\"intensity\": [1, 1, 1], \"irradiance\": [1, 1, 1]}]}",
      SH_ERR_SCENE, 3, 77, "lights[0].irradiance",
      "unknown key 'irradiance' in a point light"},
+    /* The sun's disk: directional lights only, at most 10 degrees. */
+    {HEAD "\"lights\": [{\"type\": \"directional\", \"direction\": [0, -1, "
+          "0], \"irradiance\": [1, 1, 1], \"angular_diameter_deg\": 11}]}",
+     SH_ERR_SCENE, 3, 110, "lights[0].angular_diameter_deg",
+     "expected a number in [0, 10], found the number 11"},
+    {HEAD "\"lights\": [{\"type\": \"directional\", \"direction\": [0, -1, "
+          "0], \"irradiance\": [1, 1, 1], \"angular_diameter_deg\": -1}]}",
+     SH_ERR_SCENE, 3, 110, "lights[0].angular_diameter_deg",
+     "expected a number in [0, 10], found the number -1"},
+    {HEAD "\"lights\": [{\"type\": \"point\", \"position\": [0, 0, 0], "
+          "\"intensity\": [1, 1, 1], \"angular_diameter_deg\": 1}]}",
+     SH_ERR_SCENE, 3, 77, "lights[0].angular_diameter_deg",
+     "unknown key 'angular_diameter_deg' in a point light"},
     {HEAD "\"lights\": [{\"type\": \"spto\"}]}", SH_ERR_SCENE, 3, 21,
      "lights[0].type", "unknown light type 'spto'; did you mean 'spot'?"},
     {HEAD "\"medium\": {\"sigma_s\": [1, 1, 1], \"phase\": {\"type\": "

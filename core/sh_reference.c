@@ -118,7 +118,8 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
   sh_hit h;
   int hit = sh_rt_intersect(w->job->rt, o, d, 0.0, INFINITY, &h, &w->counters);
   double tend = hit ? h.t : INFINITY;
-  sh_vec3 L = hit ? shade(w, &h, d, depth, rng) : scene->background;
+  sh_vec3 L = hit ? shade(w, &h, d, depth, rng)
+                : sh_scene_background_radiance(scene, d);
   const sh_medium *m = &scene->medium;
   double t0, t1;
   if (sh_medium_clip(m, o, d, 0.0, tend, &t0, &t1)) {

@@ -76,6 +76,9 @@ typedef struct sh_light {
   sh_vec3 intensity;  /* point, spot: W/sr (on the axis for spots) */
   int soft_shadows;   /* light meshes: 1 (default) soft, 0 hard shadows */
   sh_vec3 irradiance; /* directional: W/m^2 normal to the direction */
+  double angular_diameter_deg; /* directional: the sun's disk seen by rays
+                                  that leave the scene, in [0, 10]; 0 (the
+                                  default): no disk */
   double outer_deg, inner_deg, exponent; /* spot */
 
   /* Light map (optional). For spots, `map_right` and `map_up` complete
@@ -92,6 +95,9 @@ typedef struct sh_light {
   /* Derived by sh_light_prepare (sh_light.h). */
   double cos_outer, cos_inner, tan_outer;
   sh_vec3 map_normal; /* directional: unit normal of the map's plane */
+  double disk_cos_half;    /* directional: cos of the disk's half-angle */
+  double disk_solid_angle; /* directional: the disk's solid angle (sr), 0
+                              without a disk */
 } sh_light;
 
 typedef struct sh_material {

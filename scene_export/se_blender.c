@@ -200,6 +200,15 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
   sh_image *profile = NULL; /* a spot's profile card for Cycles, when it needs one */
   if (l->type == SH_LIGHT_DIRECTIONAL) {
     double e = split_colour(l->irradiance, &unit);
+    /* The lamp's angle stays 0: the format shades with one direction, and
+     * a Cycles 3.4 sun lamp with an angle is seen by no camera ray (a 10
+     * degree sun straight ahead rendered 0 on a black world). */
+    if (l->angular_diameter_deg > 0)
+      se_note(b->notes,
+              "lights[%d]: the sun's disk (angular_diameter_deg %g) is not "
+              "drawn: Blender shows no sun lamp to camera rays; the shading, "
+              "with one direction, is the format's.",
+              i, l->angular_diameter_deg);
     sh_basis(l->direction, &t, &bt);
     o = json_pack("{s:s, s:o, s:o, s:f}", "type", "SUN", "matrix",
                   frame(t, bt, sh_neg(l->direction), sh_madd(b->center, l->direction,

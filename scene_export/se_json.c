@@ -130,6 +130,9 @@ static json_t *light(files *f, const sh_light *l, int i) {
   case SH_LIGHT_DIRECTIONAL:
     o = json_pack("{s:s, s:o, s:o}", "type", "directional", "direction",
                   vec(l->direction), "irradiance", vec(l->irradiance));
+    if (o && l->angular_diameter_deg > 0)
+      json_object_set_new(o, "angular_diameter_deg",
+                          json_real(l->angular_diameter_deg));
     if (o && l->has_map)
       json_object_set_new(o, "light_map",
                           json_pack("{s:o, s:o, s:o, s:o}", "image",

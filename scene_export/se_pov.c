@@ -111,6 +111,41 @@ static int trace_levels(const pov *p) {
   return p->scene->render.max_depth + 1 + (p->scene->medium.present ? 2 : 0);
 }
 
+/* The sun's disks (docs/scene-format.md, "The sun's disk"): a sky_sphere
+ * layer per directional light with a disk, its pigment evaluated at the
+ * ray's direction on the unit sphere: the background plus irradiance /
+ * Omega within the cone (the select's argument is the cosine to the
+ * light's direction minus the cone's, in double precision), transparent
+ * outside it so that the background shows, as POV-Ray layers sky_sphere
+ * pigments over the background. Like the background, it is attenuated by
+ * the media the ray crosses. */
+static void sun_disks(pov *p) {
+  const sh_scene *s = p->scene;
+  se_buf *b = p->b;
+  int any = 0;
+  for (int i = 0; i < s->nlights; i++) {
+    const sh_light *l = &s->lights[i];
+    if (l->type != SH_LIGHT_DIRECTIONAL || !(l->disk_solid_angle > 0)) continue;
+    if (!any++)
+      se_buf_puts(b, "// The sun's disks: the background plus irradiance / solid angle in the\n"
+                     "// cone around the direction each light comes from.\nsky_sphere {\n");
+    sh_vec3 from = se_frame_dir(&p->frame, sh_neg(l->direction));
+    se_buf_printf(b, "  // lights[%d]: angular diameter %.10g degrees\n", i,
+                  l->angular_diameter_deg);
+    se_buf_puts(b, "  pigment {\n    function { select(x * ");
+    num(b, from.x);
+    se_buf_puts(b, " + y * ");
+    num(b, from.y);
+    se_buf_puts(b, " + z * ");
+    num(b, from.z);
+    se_buf_printf(b, " - %.17g, 0, 1, 1) }\n", l->disk_cos_half);
+    se_buf_puts(b, "    color_map { [0 rgbt <0, 0, 0, 1>] [1 ");
+    colour(b, sh_madd(s->background, l->irradiance, 1.0 / l->disk_solid_angle));
+    se_buf_puts(b, "] }\n  }\n");
+  }
+  if (any) se_buf_puts(b, "}\n\n");
+}
+
 static void globals(pov *p) {
   const sh_scene *s = p->scene;
   se_buf *b = p->b;
@@ -121,6 +156,7 @@ static void globals(pov *p) {
   se_buf_puts(b, "background { ");
   colour(b, s->background);
   se_buf_puts(b, " }\n\n");
+  sun_disks(p);
   double aspect = (double)s->camera.width / s->camera.height;
   double hfov = 2.0 * atan(tan(0.5 * s->camera.fov_y_deg * SH_PI / 180.0) * aspect) *
                 180.0 / SH_PI;
