@@ -19,6 +19,18 @@ static const double aq__gw[5] = {0.2369268850561891, 0.4786286704993665,
                                  0.5688888888888889, 0.4786286704993665,
                                  0.2369268850561891};
 
+/* Earth's atmosphere with the contract's reference values (Bruneton
+ * 2017), in km, ground albedo 0.3. */
+static inline gs__atmo aq_earth(void) {
+  gs__atmo a = {{{0, -6360, 0}, 6360, 6420},
+                {0.3, 0.3, 0.3},
+                {5.802e-3, 13.558e-3, 33.1e-3}, 8,
+                {3.996e-3, 3.996e-3, 3.996e-3}, {0.444e-3, 0.444e-3, 0.444e-3}, 1.2,
+                {SH_PHASE_CORNETTE_SHANKS, 0.8},
+                {0.650e-3, 1.881e-3, 0.085e-3}, 25, 30};
+  return a;
+}
+
 /* The parameters t in (0, len) where o + t d (d unit) crosses a sphere of
  * radius R about c; returns how many (0 to 2), into t[]. */
 static inline int aq__cross(sh_vec3 o, sh_vec3 d, double len, sh_vec3 c, double R,

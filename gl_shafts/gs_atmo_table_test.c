@@ -11,17 +11,6 @@
 #include "sh_rng.h"
 #include "sh_test.h"
 
-/* Earth's atmosphere with the contract's reference values (Bruneton
- * 2017), in km. */
-static gs__atmo earth(void) {
-  gs__atmo a = {{{0, -6360, 0}, 6360, 6420},
-                {0.1, 0.1, 0.1},
-                {5.802e-3, 13.558e-3, 33.1e-3}, 8,
-                {3.996e-3, 3.996e-3, 3.996e-3}, {0.444e-3, 0.444e-3, 0.444e-3}, 1.2,
-                {SH_PHASE_CORNETTE_SHANKS, 0.8},
-                {0.650e-3, 1.881e-3, 0.085e-3}, 25, 30};
-  return a;
-}
 
 /* |a - b| / b over the channels, the largest. */
 static double rel(sh_vec3 a, sh_vec3 b) {
@@ -139,7 +128,7 @@ int main(void) {
   /* Until the core's medium renders the atmosphere (issue 12, part 1),
    * the table is filled and checked with the independent quadrature of
    * atmo_quad.h, whose own accuracy is checked first. */
-  gs__atmo a = earth();
+  gs__atmo a = aq_earth();
   const gs__atmo_shell *shell = &a.shell;
   gs__atmo_source src = {aq_depth, &a};
   {

@@ -45,6 +45,7 @@
 #define GS_UNIT_INTERVAL 3    /* the sweep's ray intervals, u_interval */
 #define GS_UNIT_XI 4          /* the xi lattice, u_xi */
 #define GS_UNIT_LINDEPTH 5    /* the surfaces' view depth, u_lindepth */
-#define GS_UNIT_FREE 6
+#define GS_UNIT_ATMO 6        /* the atmosphere's optical depths, u_table */
+#define GS_UNIT_FREE 7
 
 #endif

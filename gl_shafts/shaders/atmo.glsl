@@ -1,0 +1,231 @@
+// The atmosphere (gs_atmo.h): its coefficients by height, the phase
+// mixture, the optical-depth table (gs_atmo_table.h) and the geometry of a
+// pixel's ray about the planet, shared by atmo_base.frag, atmo_sky.frag and
+// atmo_space.frag.
+//
+// Coordinates are the eye's: the eye is the origin, the planet's centre
+// lies at -u_re * u_up (u_up the unit vertical at the eye, u_re the eye's
+// distance from the centre). Every radius and height along a ray comes from
+// the quantities the C side computes in double precision, so nothing
+// cancels in float: u_ce = r_e^2 - R_g^2 (= h_e (2 R_g + h_e)), and a point
+// at distance t along the unit ray d (mu = d . u_up) has
+//   rho^2(t) = r(t)^2 - R_g^2 = u_ce + t (2 r_e mu + t),
+// its height h = rho^2 / (r + R_g). With the eye 1 m above a 6360 km
+// planet, r_e in float is known to 0.5 m, rho^2 and h to a few
+// micrometres.
+//
+// Parameters (gs_atmo_render.c): u_up, u_re, u_ce, u_rg, u_rt, u_hh
+// (sqrt(R_t^2 - R_g^2)), u_ray_s, u_ray_h, u_mie_s, u_mie_t (Mie's sigma_s
+// + sigma_a), u_mie_h, u_mie_g, u_oz_a, u_oz_c, u_oz_w, u_albedo, u_lsun
+// (unit, towards the sun), u_esun (irradiance), u_table_size (n_mu, n_r),
+// u_background. MIE_PHASE selects Mie's phase function (ATMO_MIE_*),
+// EYE_OUTSIDE 1 an eye above the top (the planet from space).
+
+#define ATMO_MIE_ISOTROPIC 0
+#define ATMO_MIE_HG 1
+#define ATMO_MIE_CS 2
+#define ATMO_MIE_HAZY 3
+#define ATMO_MIE_MURKY 4
+#define ATMO_MIE_RAYLEIGH 5
+#ifndef MIE_PHASE
+#define MIE_PHASE ATMO_MIE_CS
+#endif
+#ifndef EYE_OUTSIDE
+#define EYE_OUTSIDE 0
+#endif
+
+layout(binding = GS_UNIT_ATMO) uniform sampler2D u_table;
+
+const float ATMO_TAU_EPS = 1e-6; // GS__ATMO_TAU_EPS
+
+float rayleigh_phase(float c) { return 3.0 * (1.0 + c * c) / (16.0 * PI); }
+
+// Mie's normalised phase function at cos(alpha) (sh_phase_eval).
+float mie_phase(float c) {
+  float g = u_mie_g;
+#if MIE_PHASE == ATMO_MIE_HG
+  float den = 1.0 + g * g - 2.0 * g * c;
+  return (1.0 - g * g) / (4.0 * PI * den * sqrt(den));
+#elif MIE_PHASE == ATMO_MIE_CS
+  float den = 1.0 + g * g - 2.0 * g * c;
+  return 3.0 * (1.0 - g * g) * (1.0 + c * c) /
+         (8.0 * PI * (2.0 + g * g) * den * sqrt(den));
+#elif MIE_PHASE == ATMO_MIE_HAZY
+  float x = 0.5 * (1.0 + c), x2 = x * x, x4 = x2 * x2;
+  return (1.0 + 9.0 * x4 * x4) / (8.0 * PI);
+#elif MIE_PHASE == ATMO_MIE_MURKY
+  float y = 0.5 * (1.0 + c);
+  y *= y; y *= y; y *= y; y *= y; y *= y;
+  return 33.0 * (1.0 + 50.0 * y) / (332.0 * PI);
+#elif MIE_PHASE == ATMO_MIE_RAYLEIGH
+  return rayleigh_phase(c);
+#else
+  return 1.0 / (4.0 * PI);
+#endif
+}
+
+// sigma_s times the phase mixture at height h, for the phase values pr
+// (Rayleigh's) and pm (Mie's) of the pixel: sum of sigma_s p.
+vec3 scatter_at(float h, float pr, float pm) {
+  return u_ray_s * (exp(-h / u_ray_h) * pr) + u_mie_s * (exp(-h / u_mie_h) * pm);
+}
+
+// Whether the ray from radius r (rho2 = r^2 - R_g^2) with cosine mu to the
+// vertical meets the ground (gs__atmo_hits_ground).
+bool hits_ground(float r, float rho2, float mu) {
+  return mu < 0.0 && r * r * mu * mu >= rho2;
+}
+
+// The optical depth from radius r along cosine mu to the top
+// (gs__atmo_table_lookup without the ground: the caller tests it).
+vec3 tau_top(float r, float rho2, float mu) {
+  float hh2 = u_hh * u_hh, rho = sqrt(max(rho2, 0.0));
+  float top2 = max(hh2 - rho2, 0.0); // R_t^2 - r^2
+  float s = sqrt(max(r * r * mu * mu + top2, 0.0));
+  float d = mu > 0.0 ? top2 / max(r * mu + s, 1e-30) : s - r * mu;
+  float dmin = top2 / (u_rt + r), dmax = rho + u_hh;
+  float umu = clamp((d - dmin) / max(dmax - dmin, 1e-30), 0.0, 1.0);
+  float ur = clamp(rho / u_hh, 0.0, 1.0);
+  vec2 uv = (vec2(umu, ur) * (u_table_size - 1.0) + 0.5) / u_table_size;
+  return max(exp(texture(u_table, uv).rgb) - ATMO_TAU_EPS, 0.0);
+}
+
+// The transmittance from a point at radius r (rho2) towards the sun, at the
+// cosine mu_s between the sun's direction and the vertical there: 0 where
+// the ground blocks.
+vec3 sun_tr(float r, float rho2, float mu_s) {
+  return hits_ground(r, rho2, mu_s) ? vec3(0.0) : exp(-tau_top(r, rho2, mu_s));
+}
+
+// A pixel's ray about the planet.
+struct Ray {
+  vec3 d;      // unit direction
+  float mu;    // d . u_up
+  float nu;    // d . u_lsun: cos alpha of the sun's light scattered to the eye
+  float mu_s;  // u_up . u_lsun
+  float pr, pm; // the phase values at nu
+};
+
+Ray make_ray(vec3 d) {
+  Ray ry;
+  ry.d = d;
+  ry.mu = dot(d, u_up);
+  ry.nu = dot(d, u_lsun);
+  ry.mu_s = dot(u_up, u_lsun);
+  ry.pr = rayleigh_phase(ry.nu);
+  ry.pm = mie_phase(ry.nu);
+  return ry;
+}
+
+// rho^2 = r^2 - R_g^2 at distance t along the ray, without cancellation.
+float rho2_at(Ray ry, float t) { return u_ce + t * (2.0 * u_re * ry.mu + t); }
+
+// The distance along the ray to the ground (the first meeting), or -1.
+float ground_t(Ray ry) {
+  float b = u_re * ry.mu, disc = b * b - u_ce;
+  if (ry.mu >= 0.0 || disc < 0.0) return -1.0;
+  return u_ce / (-b + sqrt(disc));
+}
+
+// The distance along the ray to the top where it leaves (the far meeting),
+// or -1 if it misses the top sphere.
+float top_exit_t(Ray ry) {
+  float b = u_re * ry.mu, c = u_ce - u_hh * u_hh; // r_e^2 - R_t^2
+  float disc = b * b - c;
+  if (disc < 0.0) return -1.0;
+  return -b + sqrt(disc);
+}
+
+// The part of the ray in the planet's shadow (the half-cylinder of radius
+// R_g behind the planet along the sun's direction), as [s0, s1]; (BIG,
+// BIG) if none. Points there see no sun; the sweep integrates the
+// lit parts only, so the shadow's edge is exact.
+vec2 shadow_span(Ray ry) {
+  // The centre is c = -u_re u_up. A point p = t d: q = p - c; in the
+  // shadow where q . l < 0 and |q|^2 - (q . l)^2 < R_g^2.
+  vec3 c = -u_re * u_up;
+  vec3 dp = ry.d - ry.nu * u_lsun;      // d's part across l
+  vec3 cp = -c - dot(-c, u_lsun) * u_lsun; // (0 - c)'s part across l
+  float a = dot(dp, dp), b = dot(cp, dp);
+  // |cp|^2 - R_g^2 = |q0|^2 - (q0.l)^2 - R_g^2 with q0 = -c = u_re u_up:
+  // r_e^2 (1 - mu_s^2) - R_g^2 = u_ce - r_e^2 mu_s^2.
+  float cc = u_ce - u_re * u_re * ry.mu_s * ry.mu_s;
+  float disc = b * b - a * cc;
+  if (a < 1e-20 || disc <= 0.0) {
+    // Parallel to the axis: inside the cylinder all along, or never.
+    if (a < 1e-20 && cc < 0.0) {
+      // In the shadow where q . l < 0: t nu + u_re mu_s < 0.
+      float tq = -u_re * ry.mu_s / ry.nu;
+      return ry.nu > 0.0 ? vec2(-BIG, tq) : vec2(tq, BIG);
+    }
+    return vec2(BIG);
+  }
+  float sq = sqrt(disc);
+  float q = -b - sign(b) * sq;
+  float t0 = q / a, t1 = cc / q;
+  vec2 s = vec2(min(t0, t1), max(t0, t1));
+  // Keep the half behind the planet: q . l = u_re mu_s + t nu < 0.
+  if (abs(ry.nu) < 1e-20) {
+    if (u_re * ry.mu_s >= 0.0) return vec2(BIG);
+  } else {
+    float tl = -u_re * ry.mu_s / ry.nu; // where q . l = 0
+    if (ry.nu > 0.0) s.y = min(s.y, tl); else s.x = max(s.x, tl);
+  }
+  return s.x < s.y ? s : vec2(BIG);
+}
+
+// The point at distance t along the ray: its radius r, rho2 = r^2 - R_g^2
+// and height h, and the cosines to its vertical of the ray (mu_p) and of
+// the sun (mu_sp).
+struct Pt {
+  float r, rho2, h, mu_p, mu_sp;
+};
+
+// Inside the atmosphere (the sky), rho^2 by rho2_at; from outside (space,
+// EYE_OUTSIDE), where u_ce and the terms of rho2_at are a thousand million
+// and would cancel, from the point's offset from the centre, q = r_e u_up +
+// t d, whose float error is that of r_e (2 mm at 36 000 km), and so is h's.
+Pt point_at(Ray ry, float t) {
+  Pt p;
+#if EYE_OUTSIDE
+  vec3 q = u_re * u_up + t * ry.d;
+  p.r = length(q);
+  p.h = p.r - u_rg;
+  p.rho2 = p.h * (p.r + u_rg);
+  p.mu_p = dot(q, ry.d) / p.r;
+  p.mu_sp = dot(q, u_lsun) / p.r;
+#else
+  p.rho2 = rho2_at(ry, t);
+  p.r = sqrt(p.rho2 + u_rg * u_rg);
+  p.h = p.rho2 / (p.r + u_rg);
+  p.mu_p = (u_re * ry.mu + t) / p.r;
+  p.mu_sp = (u_re * ry.mu_s + t * ry.nu) / p.r;
+#endif
+  return p;
+}
+
+// The Gauss-Legendre nodes on [-1, 1] and weights of 3 points.
+const float GL3_X = 0.7745966692;
+const float GL3_W0 = 0.5555555556, GL3_W1 = 0.8888888889;
+
+// The scattered radiance per unit irradiance of the ray's lit stretch
+// [ta, tb] (3-point Gauss-Legendre), the eye's optical depth to a point by
+// EYE_TAU(p) (the stage defines it from its geometry).
+vec3 inscatter(Ray ry, float ta, float tb) {
+  if (!(tb > ta)) return vec3(0.0);
+  float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
+  vec3 sum = vec3(0.0);
+  for (int i = -1; i <= 1; i++) {
+    float t = mid + float(i) * GL3_X * half_len;
+    Pt p = point_at(ry, t);
+    vec3 f = scatter_at(p.h, ry.pr, ry.pm) * sun_tr(p.r, p.rho2, p.mu_sp) *
+             exp(-max(EYE_TAU(p), vec3(0.0)));
+    sum += f * (i == 0 ? GL3_W1 : GL3_W0);
+  }
+  return sum * half_len;
+}
+
+// inscatter over [ta, tb] without the planet's shadow sh (shadow_span).
+vec3 inscatter_lit(Ray ry, float ta, float tb, vec2 sh) {
+  return inscatter(ry, ta, min(tb, sh.x)) + inscatter(ry, max(ta, sh.y), tb);
+}
