@@ -1,0 +1,63 @@
+"""Unit tests of validation/nishita.py's pure parts (no rendering): the
+frames, the single-precision solid angle, the scenes it writes.
+
+  python3 -m validation.test_nishita
+"""
+
+import math
+import unittest
+
+from . import nishita
+
+
+class Frames(unittest.TestCase):
+    def test_sun_is_blenders(self):
+        # Blender's Nishita sun at rotation 0: (0, cos e, sin e), Z up.
+        for e in (2.0, 10.0, 60.0):
+            b = nishita.to_blender(nishita.direction(e, 0.0))
+            r = math.radians(e)
+            for got, want in zip(b, (0.0, math.cos(r), math.sin(r))):
+                self.assertAlmostEqual(got, want, places=12)
+
+    def test_probes(self):
+        z = nishita.probe_direction(nishita.PROBES[0], 10.0)
+        self.assertAlmostEqual(z[1], 1.0, places=12)
+        near = nishita.probe_direction(nishita.PROBES[1], 10.0)
+        self.assertAlmostEqual(math.degrees(math.asin(near[1])), 15.0, places=9)
+        side = nishita.probe_direction(nishita.PROBES[3], 10.0)
+        self.assertAlmostEqual(side[2], 0.0, places=12)  # 90 degrees from the sun
+
+
+class SolidAngle(unittest.TestCase):
+    def test_single_precision(self):
+        exact = nishita.exact_solid_angle(0.545)
+        self.assertAlmostEqual(exact, 2 * math.pi * (1 - math.cos(math.radians(0.2725))),
+                               delta=1e-15)
+        f = nishita.blender_solid_angle(0.545)
+        # Within float's few digits of 1 - cos, and not the exact value.
+        self.assertLess(abs(f / exact - 1), 0.01)
+
+
+class Scene(unittest.TestCase):
+    def test_contract_keys(self):
+        s = nishita.sky_scene(10.0, [1, 2, 3], nishita.BRUNETON, [0, 1, 0], 1.0, 5, 5, 16)
+        m = s["medium"]
+        self.assertEqual(m["type"], "atmosphere")
+        self.assertEqual(set(m), {"type", "center", "ground_radius", "top_radius",
+                                  "rayleigh", "mie", "ozone"})
+        self.assertEqual(s["camera"]["up"], [0.0, 0.0, -1.0])  # looking up
+        light = s["lights"][0]
+        self.assertAlmostEqual(light["direction"][1], -math.sin(math.radians(10)), places=12)
+        self.assertEqual(light["angular_diameter_deg"], nishita.SUN_SIZE_DEG)
+
+    def test_blender_constants(self):
+        c = nishita.CONSTANTS["blender_rgb"]
+        # Rayleigh falls with wavelength; Mie is 2e-5 per metre, 0.02 per km.
+        r = c["rayleigh"]["sigma_s"]
+        self.assertTrue(r[0] < r[1] < r[2])
+        self.assertAlmostEqual(c["mie"]["sigma_s"][0], 0.02, places=12)
+        self.assertAlmostEqual(c["mie"]["sigma_a"][0], 0.0022, places=12)
+
+
+if __name__ == "__main__":
+    unittest.main()
