@@ -8,8 +8,8 @@
 # viewing direction in Blender's Z-up frame), "fov_deg": number (vertical),
 # "width": int, "height": int, "samples": int, and optionally "air", "dust",
 # "ozone" (the densities, default 1), "sun_disc" (default true),
-# "sun_size_deg" (default Blender's 0.545)}. The world is a Sky Texture of
-# type NISHITA (altitude 0, sun rotation 0: the sun towards +Y) into a
+# "sun_size_deg" (default Blender's 0.545), "altitude_m" (default 0)}. The
+# world is a Sky Texture of type NISHITA (sun rotation 0: the sun towards +Y) into a
 # Background of strength 1; nothing else is in the scene, so each pixel is
 # the texture's value in the direction of its camera ray. Each view is
 # rendered to DIR/NAME.exr (32-bit float, scene linear); DIR/results.json
@@ -87,6 +87,7 @@ def main():
     from mathutils import Vector
     for view in job["views"]:
         sky.sun_elevation = math.radians(view["elevation_deg"])
+        sky.altitude = float(view.get("altitude_m", 0.0))
         sky.air_density = float(view.get("air", 1.0))
         sky.dust_density = float(view.get("dust", 1.0))
         sky.ozone_density = float(view.get("ozone", 1.0))

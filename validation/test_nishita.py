@@ -7,7 +7,7 @@ frames, the single-precision solid angle, the scenes it writes.
 import math
 import unittest
 
-from . import nishita
+from . import bench_sky, nishita
 
 
 class Frames(unittest.TestCase):
@@ -57,6 +57,38 @@ class Scene(unittest.TestCase):
         self.assertTrue(r[0] < r[1] < r[2])
         self.assertAlmostEqual(c["mie"]["sigma_s"][0], 0.02, places=12)
         self.assertAlmostEqual(c["mie"]["sigma_a"][0], 0.0022, places=12)
+
+
+class BenchSkyView(unittest.TestCase):
+    """validation/bench_sky.py's Nishita view of a scene."""
+
+    def scene(self, eye_height, elevation=10.0):
+        sun = nishita.direction(elevation, 30.0)
+        return {"camera": {"position": [0, eye_height, 0], "look_at": [0, eye_height, -1],
+                           "fov_y_deg": 40, "width": 64, "height": 48},
+                "medium": {"type": "atmosphere", "center": [0, -6360, 0],
+                           "ground_radius": 6360, "top_radius": 6420},
+                "lights": [{"type": "directional", "direction": [-c for c in sun],
+                            "irradiance": [1, 2, 3]}]}
+
+    def test_frame(self):
+        view, irradiance = bench_sky.blender_sky_view(self.scene(0.002))
+        self.assertAlmostEqual(view["elevation_deg"], 10.0, places=9)
+        self.assertAlmostEqual(view["altitude_m"], 2.0, places=6)
+        # The camera looks at azimuth -30 degrees from the sun's, which
+        # nishita.py's frame (the sun at azimuth 0, Blender's +Y) maps so.
+        want = nishita.to_blender(nishita.direction(0.0, -30.0))
+        for got, w in zip(view["dir"], want):
+            self.assertAlmostEqual(got, w, places=9)
+        self.assertEqual(irradiance, [1, 2, 3])
+
+    def test_limits(self):
+        with self.assertRaises(bench_sky.Skip):
+            bench_sky.blender_sky_view(self.scene(100.0))  # above 60 km
+        s = self.scene(0.002)
+        s["medium"] = {"type": "homogeneous"}
+        with self.assertRaises(bench_sky.Skip):
+            bench_sky.blender_sky_view(s)
 
 
 if __name__ == "__main__":
