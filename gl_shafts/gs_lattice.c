@@ -82,7 +82,7 @@ sh_status gs__lattice_eval(gs__lattice *lat, const sh_scene *scene,
   map[2] = (nv - 1) / ((y1 - y0) * nv);
   map[3] = 0.5 / nv - y0 * map[2];
   map[4] = 1.0 / (dz * nw);
-  map[5] = 0.5 / nw - ls->zmin * map[4];
+  map[5] = 0.5 / nw - (ls->zmin - view->zref) * map[4]; /* depths from zref */
   *points = (long)nu * nv * nw;
   return gs__gl_check("uploading the lattice", err);
 }

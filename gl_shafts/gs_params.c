@@ -66,7 +66,10 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   defines(p, scene, ls, !fr->bake, extra);
   const sh_camera_frame *f = &view->frame;
   /* Positions in the anchored space (gs_view.h). */
-  gs__param_v3(p, "u_eye", gs__anchored(view, f->origin));
+  /* The rays as GL sees them, relative to the depth zref (gs_view.h). */
+  gs__param_v3(p, "u_org", view->org);
+  gs__param_f(p, "u_zref", view->zref);
+  gs__param_2f(p, "u_depth_ab", view->depth_a, view->depth_b);
   gs__param_v3(p, "u_fwd", f->forward);
   gs__param_v3(p, "u_rx", sh_scale(f->right, view->sx));
   gs__param_v3(p, "u_uy", sh_scale(f->up, view->sy));

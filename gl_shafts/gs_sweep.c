@@ -108,8 +108,9 @@ static int build_slabs(gs__sweep *sw, const gs__sweep_job *job, double *pixels) 
       float *o = sw->verts + 5 * nv++;
       o[0] = (float)hull[i][0];
       o[1] = (float)hull[i][1];
-      o[2] = (float)za;
-      o[3] = (float)zb;
+      /* Depths as GL sees them, from zref (gs_view.h). */
+      o[2] = (float)(za - view->zref);
+      o[3] = (float)(zb - view->zref);
       o[4] = (float)k;
       int j = (i + 1) % h;
       area += hull[i][0] * hull[j][1] - hull[j][0] * hull[i][1];
@@ -180,7 +181,6 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define TAU_SUB %d\n",
            job->lattice == NULL, job->jitter, tau_sub || live);
   gs__params *p = gs__params_begin(job->frame, ls, extra);
-  gs__param_f(p, "u_near", job->frame->view->znear);
   /* A spot's smooth edge is sampled at least once per its width, a
    * forward-peaked phase function (Nishita's murky) four times per the
    * peak's half width. A cone narrower than the sub-angle takes four

@@ -23,6 +23,26 @@ void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop) {
   v->znear = 1e-5 * (size > 0 ? size : 1.0);
   double unit;
   sh_frame_fit(lo, hi, &v->anchor, &unit);
+  /* The bounds' depth range, as the corners' offsets from the anchor's
+   * depth (no cancellation for a camera far away). */
+  double za = gs__view_depth(v, v->anchor), c0 = INFINITY, c1 = -INFINITY;
+  for (int i = 0; i < 8; i++) {
+    sh_vec3 c = sh_v3(i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z);
+    double dc = sh_dot(sh_sub(c, v->anchor), v->frame.forward);
+    c0 = fmin(c0, dc);
+    c1 = fmax(c1, dc);
+  }
+  v->zref = 0;
+  v->depth_a = 0;
+  v->depth_b = v->znear;
+  if (za + c0 > v->znear) {
+    v->zref = za + c0;
+    v->znear = v->zref;
+    double span = fmax(c1 - c0, v->znear * 1e-6);
+    v->depth_a = v->zref / (2.0 * span);
+    v->depth_b = v->zref;
+  }
+  v->org = sh_madd(sh_sub(v->frame.origin, v->anchor), v->frame.forward, v->zref);
 }
 
 sh_vec3 gs__anchored(const gs__view *v, sh_vec3 p) { return sh_sub(p, v->anchor); }
@@ -49,11 +69,14 @@ sh_mat4 gs__view_proj(const gs__view *v) {
     m.m[r][2] = rows[r].z;
     m.m[r][3] = -sh_dot(rows[r], eye);
   }
-  m.m[2][3] = v->znear;
+  /* clip z = depth_b - depth_a zeta, zeta = forward . (p - org); w = z =
+   * zref + zeta. */
+  for (int c = 0; c < 3; c++) m.m[2][c] = -v->depth_a * sh_vget(f->forward, c);
+  m.m[2][3] = v->depth_b + v->depth_a * sh_dot(f->forward, v->org);
   m.m[3][0] = rows[2].x;
   m.m[3][1] = rows[2].y;
   m.m[3][2] = rows[2].z;
-  m.m[3][3] = -sh_dot(rows[2], eye);
+  m.m[3][3] = v->zref - sh_dot(rows[2], v->org);
   return m;
 }
 
@@ -61,6 +84,11 @@ sh_vec3 gs__view_ray(const gs__view *v, double x, double y) {
   const sh_camera_frame *f = &v->frame;
   return sh_madd(sh_madd(f->forward, f->right, v->cx + x * v->sx), f->up,
                  v->cy + y * v->sy);
+}
+
+sh_vec3 gs__view_ray_offset(const gs__view *v, double x, double y) {
+  const sh_camera_frame *f = &v->frame;
+  return sh_madd(sh_scale(f->right, v->cx + x * v->sx), f->up, v->cy + y * v->sy);
 }
 
 double gs__view_depth(const gs__view *v, sh_vec3 p) {

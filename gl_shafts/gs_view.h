@@ -32,12 +32,35 @@ typedef struct gs__view {
    * scene's bounds (sh_scene_bounds): near their centre, and quantised, so
    * that it seldom moves when the scene changes. */
   sh_vec3 anchor;
+  /* GL sees view depths relative to zref, as zeta = z - zref, and a pixel's
+   * ray as org + zref (d - forward) + zeta d (org and zref (d - forward) in
+   * the anchored space, both small where the scene is): from the eye, a
+   * camera 5e5 units from a scene 4 across kept depths and eye-relative
+   * points only to ulp(5e5) = 1/32 unit in single precision, and their
+   * differences cancelled (44% off). zref is the scene's near end (the
+   * least view depth of its bounds' corners) when the scene lies wholly
+   * beyond the near plane, else 0 (the camera in the scene: depths are the
+   * eye's own); org is the point of the view axis at that depth, eye + zref
+   * forward - anchor, computed in double. */
+  double zref;
+  sh_vec3 org;
+  /* The depth buffer holds (depth_b - depth_a zeta) / z, 1 at the near
+   * plane. With the camera in the scene, depth_a = 0 and depth_b = znear:
+   * reversed Z, znear / z, of relative precision. With the scene beyond
+   * the near plane (which is then at zref), the depth falls to 0 at zref +
+   * twice the scene's depth span s: depth_b = zref, depth_a = zref / (2 s),
+   * nearly linear in zeta for a camera far away, so that surfaces keep
+   * about 1e-7 of s apart at any distance (znear / z kept 1e-7 of z: a
+   * camera 1e8 units from a scene 4 across could not tell its surfaces
+   * apart). */
+  double depth_a, depth_b;
 } gs__view;
 
 /* The scene's camera, of the window `crop` (NULL or all zero: the whole
  * image; it must have passed sh_crop_check); the near plane is set tiny
  * against the scene's size (float depth with reversed Z keeps its
- * precision); the anchor. */
+ * precision), or at the scene's near end when all of it lies beyond that;
+ * the anchor, zref, org and the depth mapping. */
 void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop);
 
 /* A world point or box corner in the anchored space. */
@@ -52,13 +75,18 @@ sh_mat4 gs__anchored_mat(const gs__view *v, const sh_mat4 *m);
 sh_mat4 gs__sphere_from_anchored(const gs__view *v, const sh_shape *sphere);
 
 /* Anchored space to clip space: clip = ((x_v - cx z) / sx, (y_v - cy z) / sy,
- * znear, z), so the stored depth is znear / z (1 at the near plane, 0 at
- * infinity). */
+ * depth_b - depth_a zeta, z), so the stored depth is (depth_b - depth_a
+ * zeta) / z (1 at the near plane; 0 at infinity or, for a scene beyond the
+ * near plane, at twice its depth span behind its near end). */
 sh_mat4 gs__view_proj(const gs__view *v);
 
 /* The unnormalised direction (d . forward = 1) of the ray through a point
  * of the window's NDC. */
 sh_vec3 gs__view_ray(const gs__view *v, double x, double y);
+
+/* The ray origin of a pixel at zeta = 0 is org + zref (d - forward): this is
+ * d - forward = right (cx + sx x) + up (cy + sy y) of the window's NDC. */
+sh_vec3 gs__view_ray_offset(const gs__view *v, double x, double y);
 
 /* View depth of a world point. */
 double gs__view_depth(const gs__view *v, sh_vec3 p);

@@ -82,7 +82,6 @@ static void build_passes(const gs__frame *fr, const gs__light_setup *ls, int row
   snprintf(extra, sizeof extra, "#define XI_EXACT %d\n#define JITTER %d\n#define TAU_SUB %d\n",
            xi_exact, jitter, tau_sub);
   p = gs__params_begin(fr, ls, extra);
-  gs__param_f(p, "u_near", fr->view->znear);
   gs__param_f(p, "u_inv_sub_angle", 100.0);
   gs__param_f(p, "u_inv_sub_texels", 0.5);
   gs__param_2f(p, "u_map_size", 64, 64);

@@ -17,8 +17,9 @@ vec3 sun_disk(vec3 d, vec4 dir_chord2, vec3 radiance) {
 #endif
 
 void main() {
-  vec3 d = normalize(view_ray(gl_FragCoord.xy));
-  o_color = vec4((u_background + SUN_DISKS(d)) * atten(medium_len_ray(u_eye, d)),
+  vec3 d = view_ray(gl_FragCoord.xy);
+  vec3 tr = atten(medium_len_eye(view_origin(gl_FragCoord.xy), d, BIG));
+  o_color = vec4((u_background + SUN_DISKS(normalize(d))) * tr,
                  0.0);
   o_depth = vec4(BIG);
 }

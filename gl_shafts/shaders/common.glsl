@@ -24,9 +24,13 @@
 // the value classes above that are costly to choose per fragment and
 // seldom flip (SPOT_EXPONENT, LIGHT_INSIDE, SHADOW 0 for a light without
 // shadow casters), so that new values select the same program.
-// Conventions: p is a world point; z is view depth, the distance along the
-// camera's forward axis, so the pixel ray is u_eye + z * d with d the
-// unnormalised direction of view_ray (d . forward = 1).
+// Conventions: p is a world point (in the anchored space, gs_view.h); z is
+// view depth, the distance along the camera's forward axis, counted from the
+// depth u_zref (the scene's near end, or the eye when the camera is in the
+// scene): the pixel ray is ray_origin + z * d with d the unnormalised
+// direction of view_ray (d . forward = 1), and the eye lies at z = -u_zref.
+// Counted from the eye, a camera far away kept depths and points only to
+// the ulp of its distance (gs_view.h).
 
 #ifndef LIGHT_TYPE
 #define LIGHT_TYPE GS_LIGHT_POINT
@@ -69,7 +73,8 @@ const float PI = 3.14159265358979;
 const float BIG = 3.0e38;
 
 // The parameters come first, as constants or uniforms (gs_params.c):
-// camera: u_eye, u_fwd, u_rx and u_uy (right and up times the drawn
+// camera: u_org and u_zref (below), u_depth_ab (the depth buffer holds
+//   (u_depth_ab.y - u_depth_ab.x z) / (u_zref + z), gs_view.h), u_fwd, u_rx and u_uy (right and up times the drawn
 //   window's half size on the plane one unit ahead: tan(half fov) for the
 //   whole image), u_rc (the window's centre on that plane, 0 for the whole
 //   image), u_ndc_scale (2 / width, 2 / height of the window), u_frag0 (the
@@ -96,6 +101,23 @@ vec3 ndc_ray(vec2 ndc) {
 
 vec3 view_ray(vec2 frag) {
   return ndc_ray(frag * u_ndc_scale - 1.0);
+}
+
+// The point at z = 0 of the ray through a point of the window's NDC, and
+// through a fragment's centre: u_org (the view axis at u_zref) plus u_zref
+// (d - u_fwd), both small where the scene is.
+vec3 ndc_origin(vec2 ndc) {
+  return u_org + u_zref * (u_rc + ndc.x * u_rx + ndc.y * u_uy);
+}
+
+vec3 view_origin(vec2 frag) {
+  return ndc_origin(frag * u_ndc_scale - 1.0);
+}
+
+// The depth buffer's value at view depth z (from u_zref), as gs_view.c's
+// projection gives it.
+float depth_at(float z) {
+  return (u_depth_ab.y - u_depth_ab.x * z) / (u_zref + z);
 }
 
 // 1 / d with zero components replaced by a huge number of the right sign,
@@ -126,6 +148,13 @@ float medium_len(vec3 a, vec3 b) {
 float medium_len_ray(vec3 p, vec3 w) {
   vec2 t = box_clip(p, w, 0.0, BIG);
   return max(t.y - t.x, 0.0);
+}
+
+// Length inside the box of the pixel ray o + z d between the eye (z =
+// -u_zref) and z.
+float medium_len_eye(vec3 o, vec3 d, float z) {
+  vec2 t = box_clip(o, d, -u_zref, z);
+  return max(t.y - t.x, 0.0) * length(d);
 }
 
 // Transmittance over a length inside the medium.

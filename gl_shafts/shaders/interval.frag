@@ -1,7 +1,8 @@
-// Per pixel and light: the view-depth interval [z0, z1] of the pixel's ray
-// that the light can reach in the medium (inside the box, the spot's cone or
-// the window's prism, and in front of the surface), and the depth where the
-// ray enters the box (for the transmittance towards the eye).
+// Per pixel and light: the view-depth interval [z0, z1] (counted from
+// u_zref, as every depth in GL) of the pixel's ray that the light can reach
+// in the medium (inside the box, the spot's cone or the window's prism, and
+// in front of the surface), and the depth where the ray enters the box (for
+// the transmittance towards the eye).
 layout(binding = GS_UNIT_LINDEPTH) uniform sampler2D u_lindepth;
 layout(location = 0) out vec4 o_interval;
 
@@ -52,17 +53,17 @@ vec2 cone_clip(vec3 o, vec3 d) {
 }
 
 void main() {
-  vec3 d = view_ray(gl_FragCoord.xy);
+  vec3 d = view_ray(gl_FragCoord.xy), o = view_origin(gl_FragCoord.xy);
   float zs = texelFetch(u_lindepth, ivec2(gl_FragCoord.xy), 0).r;
-  vec2 box = box_clip(u_eye, d, 0.0, zs);
+  vec2 box = box_clip(o, d, -u_zref, zs);
   vec2 iv = box;
 #if LIGHT_TYPE == GS_LIGHT_SPOT && CONE_CLIP
-  vec2 c = cone_clip(u_eye, d);
+  vec2 c = cone_clip(o, d);
   iv = vec2(max(iv.x, c.x), min(iv.y, c.y));
 #endif
 #if LIGHT_TYPE == GS_LIGHT_DIRECTIONAL && HAS_MAP
-  iv = clip_unit(iv, dot(u_win_s.xyz, u_eye) + u_win_s.w, dot(u_win_s.xyz, d));
-  iv = clip_unit(iv, dot(u_win_t.xyz, u_eye) + u_win_t.w, dot(u_win_t.xyz, d));
+  iv = clip_unit(iv, dot(u_win_s.xyz, o) + u_win_s.w, dot(u_win_s.xyz, d));
+  iv = clip_unit(iv, dot(u_win_t.xyz, o) + u_win_t.w, dot(u_win_t.xyz, d));
 #endif
   o_interval = vec4(iv, box.x, 0.0);
 }

@@ -7,8 +7,8 @@
 
 // The integrand but for dt at view depth z, without the visibility:
 // xi * pattern.
-vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
-  vec3 p = u_eye + z * d;
+vec3 sample_dir(vec3 o, float z, vec3 d, float dl, vec2 ndc, float entry) {
+  vec3 p = o + z * d;
 #if XI_EXACT
   vec3 wi = -u_ldir;
   vec3 v = u_sigma_s * phase(dot(wi, d) / dl) * atten(box_exit(p, wi) + (z - entry) * dl);
@@ -18,8 +18,8 @@ vec3 sample_dir(float z, vec3 d, float dl, vec2 ndc, float entry) {
   return v * light_pattern(p);
 }
 
-// A directional light's visibility at view depth z.
-float vis_dir(float z, vec3 d) { return shadow_volume(shadow_at(u_eye + z * d, VOLUME_MARGIN)); }
+// A directional light's visibility at view depth z of the ray o + z d.
+float vis_dir(vec3 o, float z, vec3 d) { return shadow_volume(shadow_at(o + z * d, VOLUME_MARGIN)); }
 
 // Its visibility over the step [a, b] of a part, whose start sees v0 (set
 // to what b sees, for the next step): where the ends differ, the step holds
@@ -28,15 +28,15 @@ float vis_dir(float z, vec3 d) { return shadow_volume(shadow_at(u_eye + z * d, V
 // bisection is a loop of 0 turns where the ends agree, not an if: llvmpipe
 // runs both sides of a branch in every lane, but leaves a loop once no lane
 // is in it.
-float vis_step(float a, float b, vec3 d, inout float v0) {
+float vis_step(vec3 o, float a, float b, vec3 d, inout float v0) {
 #if SHADOW != GS_SHADOW_NONE
-  float va = v0, v1 = vis_dir(b, d);
+  float va = v0, v1 = vis_dir(o, b, d);
   v0 = v1;
   float l = a, r = b;
   int edge_steps = abs(v1 - va) > 0.5 ? EDGE_STEPS : 0;
   for (int j = 0; j < edge_steps; j++) {
     float m = 0.5 * (l + r);
-    if ((vis_dir(m, d) > 0.5) == (va > 0.5)) l = m; else r = m;
+    if ((vis_dir(o, m, d) > 0.5) == (va > 0.5)) l = m; else r = m;
   }
   return mix(v1, va, clamp((0.5 * (l + r) - a) / (b - a), 0.0, 1.0));
 #else
@@ -49,7 +49,7 @@ void main() {
   float lo = max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
   if (!(hi > lo)) discard;
   vec2 ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
-  vec3 d = ndc_ray(ndc);
+  vec3 d = ndc_ray(ndc), o = ndc_origin(ndc);
   float dl = length(d);
   float u = jitter_offset();
 #if HAS_MAP || TAU_SUB
@@ -66,15 +66,15 @@ void main() {
 #endif
   int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
   vec3 sum = vec3(0.0);
-  float w = (hi - lo) / float(n), v0 = vis_dir(lo, d);
+  float w = (hi - lo) / float(n), v0 = vis_dir(o, lo, d);
   for (int i = 0; i < n; i++) {
     float a = lo + float(i) * w, z = a + u * w;
-    sum += sample_dir(z, d, dl, ndc, iv.z) * vis_step(a, a + w, d, v0);
+    sum += sample_dir(o, z, d, dl, ndc, iv.z) * vis_step(o, a, a + w, d, v0);
   }
   sum *= 1.0 / float(n);
 #else
-  float z = mix(lo, hi, u), v0 = vis_dir(lo, d);
-  vec3 sum = sample_dir(z, d, dl, ndc, iv.z) * vis_step(lo, hi, d, v0);
+  float z = mix(lo, hi, u), v0 = vis_dir(o, lo, d);
+  vec3 sum = sample_dir(o, z, d, dl, ndc, iv.z) * vis_step(o, lo, hi, d, v0);
 #endif
   o_color = vec4(u_lpower * sum * ((hi - lo) * dl), 0.0);
 }

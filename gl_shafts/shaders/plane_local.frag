@@ -3,7 +3,8 @@
 //
 // For point and spot lights the part is parametrised by the angle theta it
 // subtends at the light: with h the light's distance from the ray, b the
-// ray length to the foot F of the perpendicular from the light, and e the
+// ray length (from its point at depth 0) to the foot F of the perpendicular
+// from the light, and e the
 // unit vector from F towards the light, the point at angle theta is
 // F + h tan(theta) dn, its distance to the light r = h / cos(theta), the
 // direction to the light wi = cos(theta) e - sin(theta) dn, and
@@ -94,19 +95,22 @@ void main() {
   float lo = v_plane == 0.0 ? iv.x : max(v_slab.x, iv.x), hi = min(v_slab.y, iv.y);
   if (!(hi > lo)) discard;
   g_ndc = gl_FragCoord.xy * u_ndc_scale - 1.0;
-  vec3 d = ndc_ray(g_ndc);
+  vec3 d = ndc_ray(g_ndc), o = ndc_origin(g_ndc);
   g_dl = length(d);
   g_dn = d / g_dl;
-  vec3 q = u_eye - u_lpos;
+  // Ray lengths are counted from o, the ray's point at depth 0 (near the
+  // scene): from the eye, b and the parts' ends were all about the camera's
+  // distance and their differences cancelled.
+  vec3 q = o - u_lpos;
   g_b = -dot(q, g_dn);
-  g_foot = u_eye + g_b * g_dn;
+  g_foot = o + g_b * g_dn;
   vec3 ev = u_lpos - g_foot;
   // At least the light's minimal distance (sh_medium.h): a ray through the
   // light integrates 1 / ((t - b)^2 + u_light_rmin^2), as in every
   // renderer; below that, a floor relative to the ray's lengths (an
   // absolute one swamps a scene a billionth of a unit across).
   g_h0 = length(ev);
-  g_h = max(g_h0, max(u_light_rmin, 1e-6 * (abs(g_b) + hi * g_dl)));
+  g_h = max(g_h0, max(u_light_rmin, 1e-6 * (abs(g_b) + abs(hi) * g_dl)));
   g_e = g_h0 > 0.0 ? ev / g_h0 : vec3(0.0);
   g_entry = iv.z * g_dl;
 #if LIGHT_TYPE == GS_LIGHT_SPOT

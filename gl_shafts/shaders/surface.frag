@@ -1,6 +1,7 @@
 // One light's contribution to the surfaces (Lambert + Phong with shadows,
 // as the reference shades them), attenuated by the medium towards the eye;
-// the first pass adds emission and ambient. Also writes the view depth.
+// the first pass adds emission and ambient. Also writes the view depth
+// (counted from u_zref, common.glsl).
 in vec3 v_pos;
 in vec3 v_nrm;
 uniform vec3 u_kd, u_ks, u_base;
@@ -47,12 +48,12 @@ float receiver_offset(vec3 p, float cosl) {
 }
 
 void main() {
+  vec3 d = view_ray(gl_FragCoord.xy), o = view_origin(gl_FragCoord.xy);
 #if SPHERE
   // The pixel's ray against the true sphere, in object space; the ray
-  // parameter is the view depth (d . forward = 1). `precise` keeps the depth
+  // parameter is the view depth from u_zref (d . forward = 1). `precise` keeps the depth
   // bit-identical in every pass, which the GL_EQUAL depth test relies on.
-  vec3 d = view_ray(gl_FragCoord.xy);
-  vec3 oc = (u_obj_inv * vec4(u_eye, 1.0)).xyz - u_center;
+  vec3 oc = (u_obj_inv * vec4(o, 1.0)).xyz - u_center;
   vec3 od = (u_obj_inv * vec4(d, 0.0)).xyz;
   // The discriminant B^2 - A (|oc|^2 - r^2) as A (r^2 - |f|^2), f the
   // ray's point nearest to the centre: the first form cancels when the
@@ -62,17 +63,21 @@ void main() {
   precise float disc = A * (u_radius * u_radius - dot(f, f));
   if (disc < 0.0) discard;
   precise float t = (-B - sqrt(disc)) / A;
-  if (t < u_near) t = (-B + sqrt(disc)) / A; // the camera is inside
-  if (t < u_near) discard;
-  gl_FragDepth = u_near / t;
-  vec3 p = u_eye + t * d;
-  vec3 view = p - u_eye;
+  precise float tnear = u_near - u_zref;
+  if (t < tnear) t = (-B + sqrt(disc)) / A; // the camera is inside
+  if (t < tnear) discard;
+  precise float depth = (u_depth_ab.y - u_depth_ab.x * t) / (u_zref + t); // depth_at(t)
+  gl_FragDepth = depth;
+  vec3 p = o + t * d;
   vec3 n = normalize(transpose(mat3(u_obj_inv)) * (oc + t * od));
 #else
   vec3 p = v_pos;
-  vec3 view = p - u_eye;
+  float t = dot(p - u_org, u_fwd);
   vec3 n = normalize(v_nrm);
 #endif
+  // The direction from the eye: the pixel's ray (p - eye cancelled for a
+  // camera far away).
+  vec3 view = d;
   if (dot(n, view) > 0.0) n = -n; // shade the side the camera sees
   vec3 L = u_base;
   if (u_lit != 0.0) {
@@ -87,6 +92,6 @@ void main() {
       L += f * e * vis;
     }
   }
-  o_color = vec4(L * atten(medium_len(u_eye, p)), 0.0);
-  o_depth = vec4(dot(view, u_fwd));
+  o_color = vec4(L * atten(medium_len_eye(o, d, t)), 0.0);
+  o_depth = vec4(t);
 }
