@@ -26,7 +26,7 @@ typedef struct gs__frame {
  * LIGHT_INSIDE; live programs take SPOT_SMOOTH 2, which holds for any
  * cone), `extra` lines, and the
  * camera's, the medium's and the
- * light's parameters (u_eye ... u_g, u_lpos ... u_shadow_near). Without a
+ * light's parameters (u_org ... u_g, u_lpos ... u_shadow_near). Without a
  * medium its coefficients are 0. */
 gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
                              const char *extra);

@@ -54,12 +54,12 @@ void gs__programs_free(gs__programs *cache);
 /* The parameters of a draw (camera, medium, light, ...), declared at the
  * top of its program's source in one of two ways, chosen per renderer
  * (gs_options.live); the shaders read the same names either way:
- * - baked: `const vec3 u_eye = vec3(...);`, constants holding their values.
+ * - baked: `const vec3 u_org = vec3(...);`, constants holding their values.
  *   llvmpipe folds them into the code, which makes the shaders faster (a
  *   third fewer instructions a frame than with uniforms, measured on the
  *   teapot), at the price of a program per set of values, built when the
  *   values first occur.
- * - live: `uniform vec3 u_eye;`, set when the program is bound, so that one
+ * - live: `uniform vec3 u_org;`, set when the program is bound, so that one
  *   program serves every set of values.
  * Also carries the variant's #define lines. */
 typedef struct gs__param_value {
