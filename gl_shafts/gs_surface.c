@@ -7,19 +7,11 @@
 
 static const float FULL_SCREEN[8] = {-1, -1, 1, -1, 1, 1, -1, 1};
 
-/* The sun's disks (docs/scene-format.md, "The sun's disk"), as the
- * reference sees them (sh_light_disk_radiance): one (u_sun_dirN,
- * u_sun_radianceN) pair per directional light with a disk, or per
- * directional light in live mode, so that a disk turned on or off by a
- * scene patch builds no program; SUN_DISKS(d) sums them. u_sun_dirN holds
- * the direction the light comes from and 4 sin^2(half angle / 2), the
- * squared chord |d - s|^2 at the disk's edge, which keeps its digits in
- * single precision for a 0.5 degree disk where 1 - cos does not. */
 static int has_disk(const sh_light *l, int live) {
   return l->type == SH_LIGHT_DIRECTIONAL && (live || l->disk_solid_angle > 0);
 }
 
-static void sun_disks(gs__params *p, const sh_scene *scene, int live) {
+void gs__sun_disks(gs__params *p, const sh_scene *scene, int live) {
   char name[2][32];
   int k = 0;
   for (int i = 0; i < scene->nlights; i++) {
@@ -48,7 +40,7 @@ static sh_status background(const gs__frame *fr, const gs__target *t,
                             sh_error *err) {
   gs__params *p = gs__params_begin(fr, NULL, "");
   gs__param_v3(p, "u_background", fr->scene->background);
-  sun_disks(p, fr->scene, !fr->bake);
+  gs__sun_disks(p, fr->scene, !fr->bake);
   gs__param_f(p, "u_depth", 0.0);
   GLuint prog;
   sh_status st = gs__program_use(fr->progs, &gs__glsl_screen_vert,

@@ -27,4 +27,16 @@ sh_status gs__surface_render(const gs__frame *fr, const gs__geometry *geom,
                              const gs__shadow_map *shadows, const GLuint *maps,
                              const gs__target *target, sh_error *err);
 
+/* The sun's disks (docs/scene-format.md, "The sun's disk"), as the
+ * reference sees them (sh_light_disk_radiance), for a pass that draws what
+ * rays leaving the scene see: declares one (u_sun_dirN, u_sun_radianceN)
+ * pair per directional light with a disk (per directional light when
+ * `live`, so that a scene patch turning a disk on or off builds no
+ * program) and defines SUN_DISKS(d), their radiance in the unit direction
+ * d (common.glsl). u_sun_dirN holds the direction the light comes from
+ * and 4 sin^2(half angle / 2), the squared chord |d - s|^2 at the disk's
+ * edge, which keeps its digits in single precision for a 0.5 degree disk
+ * where 1 - cos does not. */
+void gs__sun_disks(gs__params *p, const sh_scene *scene, int live);
+
 #endif

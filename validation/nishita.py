@@ -143,6 +143,60 @@ def exact_solid_angle(size_deg):
     return 4.0 * math.pi * s * s
 
 
+def zenith_depths(constants):
+    """Vertical optical depths from the ground to space (per channel):
+    Rayleigh and Mie scattering sigma H (1 - exp(-60/H)), Mie's absorption
+    likewise, ozone sigma_a w / 2 (the tent's area)."""
+    def layer(sigma, h):
+        return [s * h * (1.0 - math.exp(-60.0 / h)) for s in sigma]
+    r, m, o = constants["rayleigh"], constants["mie"], constants["ozone"]
+    return {"rayleigh": layer(r["sigma_s"], r["scale_height"]),
+            "mie_scattering": layer(m["sigma_s"], m["scale_height"]),
+            "mie_absorption": layer(m["sigma_a"], m["scale_height"]),
+            "ozone": [s * o["width"] / 2.0 for s in o["sigma_a"]]}
+
+
+def slant_density(elevation, scale_height, r_ground=6360.0, top=60.0, n=20000):
+    """The integral of exp(-h / H) along the ray from the ground at an
+    elevation (degrees) to `top` km up (Simpson's rule): the air mass of a
+    layer times H."""
+    s = math.sin(math.radians(elevation))
+    t_end = -r_ground * s + math.sqrt((r_ground * s) ** 2 + top * (2 * r_ground + top))
+    h = t_end / n
+    acc = 0.0
+    for i in range(n + 1):
+        t = i * h
+        alt = math.sqrt(r_ground * r_ground + t * t + 2 * r_ground * t * s) - r_ground
+        acc += (1 if i in (0, n) else 4 if i % 2 else 2) * math.exp(-alt / scale_height)
+    return acc * h / 3.0
+
+
+def sun_mie_table(elevations=(2, 5, 10)):
+    """The sun's Mie transmittance through each set's aerosols at low
+    elevations, and Blender's over ours."""
+    lines = ["| sun elevation | Mie transmittance, Bruneton 2017 | Blender 3.4 | Blender / ours |",
+             "|---|---|---|---|"]
+    for e in elevations:
+        t = []
+        for c in (BRUNETON, CONSTANTS["blender_rgb"]):
+            m = c["mie"]
+            t.append(math.exp(-(m["sigma_s"][0] + m["sigma_a"][0])
+                              * slant_density(e, m["scale_height"])))
+        lines.append("| %g | %.3f | %.3f | %.3f |" % (e, t[0], t[1], t[1] / t[0]))
+    return "\n".join(lines) + "\n"
+
+
+def depth_table():
+    lines = ["| vertical optical depth (R / G / B) | Bruneton 2017 | Blender 3.4 at 680/550/440 nm |",
+             "|---|---|---|"]
+    a, b = zenith_depths(BRUNETON), zenith_depths(CONSTANTS["blender_rgb"])
+    for k in a:
+        lines.append("| %s | %s | %s |" % (k.replace("_", " "),
+                                           " / ".join("%.4f" % v for v in a[k]),
+                                           " / ".join("%.4f" % v for v in b[k])))
+    return "\n".join(lines) + "\n"
+
+
 # --- Blender -------------------------------------------------------------
 
 
@@ -366,7 +420,7 @@ def main(argv=None):
         if res["refused"]:
             print("nishita: our reference is skipped: %s" % res["refused"])
             break
-    table = markdown(res)
+    table = depth_table() + "\n" + sun_mie_table() + "\n" + markdown(res)
     print(table)
     if args.markdown:
         Path(args.markdown).write_text(table)

@@ -299,3 +299,17 @@ float shadow_at(vec3 p, float margin) {
   return 1.0;
 #endif
 }
+
+// The sun's disks (docs/scene-format.md, "The sun's disk"): SUN_DISKS(d),
+// the radiance the unit direction d sees from them, sums sun_disk over the
+// (u_sun_dirN, u_sun_radianceN) pairs that gs__sun_disks (gs_surface.h)
+// declares; a program without them sees none. u_sun_dirN holds the
+// direction the light comes from and the squared chord |d - s|^2 at the
+// disk's edge.
+vec3 sun_disk(vec3 d, vec4 dir_chord2, vec3 radiance) {
+  vec3 e = d - dir_chord2.xyz;
+  return dot(e, e) <= dir_chord2.w ? radiance : vec3(0.0);
+}
+#ifndef SUN_DISKS
+#define SUN_DISKS(d) vec3(0.0)
+#endif
