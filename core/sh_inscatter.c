@@ -103,6 +103,8 @@ static sh_vec3 scatter_at(const sh_scene *scene, const vis_source *vs,
   *r2 = dist * dist;
   if (sh_is_black(e)) return e;
   const sh_medium *m = &scene->medium;
+  /* The planet's shadow (an atmosphere's ground; never for other kinds). */
+  if (sh_medium_ground_blocks(m, x, wi, dist)) return sh_v3s(0.0);
   e = sh_mul(e, l->type == SH_LIGHT_DIRECTIONAL
                     ? sh_medium_transmittance_ray(m, x, wi)
                     : sh_medium_transmittance(m, x, l->position));
@@ -116,8 +118,7 @@ static sh_vec3 scatter_at(const sh_scene *scene, const vis_source *vs,
     if (sh_is_black(vis)) return vis;
     e = sh_mul(e, vis);
   }
-  double p = sh_phase_eval(sh_medium_phase_at(m, x), sh_dot(wi, d));
-  return sh_scale(sh_mul(e, sh_medium_sigma_s_at(m, x)), p);
+  return sh_mul(e, sh_medium_scattering_at(m, x, sh_dot(wi, d)));
 }
 
 sh_vec3 sh_inscatter_light(const sh_scene *scene, const sh_rt *rt,

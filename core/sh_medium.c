@@ -1,5 +1,7 @@
 #include "sh_medium.h"
 
+#include "sh_atmosphere.h"
+
 #include <math.h>
 #include <stdio.h>
 
@@ -67,7 +69,19 @@ int sh_box_clip(sh_vec3 bmin, sh_vec3 bmax, sh_vec3 o, sh_vec3 d, double tmin,
 
 int sh_medium_clip(const sh_medium *m, sh_vec3 o, sh_vec3 d, double tmin,
                    double tmax, double *t0, double *t1) {
-  return m->present && sh_box_clip(m->bmin, m->bmax, o, d, tmin, tmax, t0, t1);
+  if (!m->present) return 0;
+  if (m->type == SH_MEDIUM_ATMOSPHERE) {
+    /* The sphere's roots want a unit direction; t scales back. */
+    double len = sh_length(d);
+    if (!(len > 0)) return 0;
+    if (!sh_atmosphere_clip(&m->atmo, o, sh_scale(d, 1.0 / len), tmin * len,
+                            tmax * len, t0, t1))
+      return 0;
+    *t0 /= len;
+    *t1 /= len;
+    return *t1 > *t0;
+  }
+  return sh_box_clip(m->bmin, m->bmax, o, d, tmin, tmax, t0, t1);
 }
 
 double sh_medium_length(const sh_medium *m, sh_vec3 a, sh_vec3 b) {
@@ -107,6 +121,8 @@ static double density_integral(const sh_medium *m, sh_vec3 o, sh_vec3 d,
 sh_vec3 sh_medium_optical_depth_span(const sh_medium *m, sh_vec3 o, sh_vec3 d,
                                      double t0, double t1) {
   if (!m->present || !(t1 > t0)) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_atmosphere_optical_depth(&m->atmo, o, d, t0, t1);
   return sh_scale(m->sigma_t, density_integral(m, o, d, t0, t1, 1.0));
 }
 
@@ -114,6 +130,11 @@ sh_vec3 sh_medium_optical_depth(const sh_medium *m, sh_vec3 a, sh_vec3 b) {
   sh_vec3 d = sh_sub(b, a);
   double t0, t1;
   if (!sh_medium_clip(m, a, d, 0.0, 1.0, &t0, &t1)) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE) {
+    double len = sh_length(d);
+    return sh_atmosphere_optical_depth(&m->atmo, a, sh_scale(d, 1.0 / len),
+                                       t0 * len, t1 * len);
+  }
   return sh_scale(m->sigma_t, density_integral(m, a, d, t0, t1, sh_length(d)));
 }
 
@@ -143,18 +164,23 @@ static double density_at(const sh_medium *m, sh_vec3 p) {
 
 sh_vec3 sh_medium_sigma_s_at(const sh_medium *m, sh_vec3 p) {
   if (!m->present) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE) return sh_atmosphere_sigma_s(&m->atmo, p);
   return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_s
                                           : sh_scale(m->sigma_s, density_at(m, p));
 }
 
 sh_vec3 sh_medium_sigma_a_at(const sh_medium *m, sh_vec3 p) {
   if (!m->present) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE) return sh_atmosphere_sigma_a(&m->atmo, p);
   return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_a
                                           : sh_scale(m->sigma_a, density_at(m, p));
 }
 
 sh_vec3 sh_medium_sigma_t_at(const sh_medium *m, sh_vec3 p) {
   if (!m->present) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_add(sh_atmosphere_sigma_s(&m->atmo, p),
+                  sh_atmosphere_sigma_a(&m->atmo, p));
   return m->type == SH_MEDIUM_HOMOGENEOUS ? m->sigma_t
                                           : sh_scale(m->sigma_t, density_at(m, p));
 }
@@ -164,9 +190,38 @@ const sh_phase *sh_medium_phase_at(const sh_medium *m, sh_vec3 p) {
   return &m->phase;
 }
 
+sh_vec3 sh_medium_phase_rgb_at(const sh_medium *m, sh_vec3 p,
+                               double cos_alpha) {
+  if (m->present && m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_atmosphere_phase(&m->atmo, p, cos_alpha);
+  return sh_v3s(sh_phase_eval(&m->phase, cos_alpha));
+}
+
+sh_vec3 sh_medium_scattering_at(const sh_medium *m, sh_vec3 p,
+                                double cos_alpha) {
+  if (!m->present) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_atmosphere_scattering(&m->atmo, p, cos_alpha);
+  return sh_scale(sh_medium_sigma_s_at(m, p), sh_phase_eval(&m->phase, cos_alpha));
+}
+
+int sh_medium_ground_hit(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                         double tmax, double *t) {
+  return m->present && m->type == SH_MEDIUM_ATMOSPHERE &&
+         sh_atmosphere_ground_hit(&m->atmo, o, d, tmax, t);
+}
+
+int sh_medium_ground_blocks(const sh_medium *m, sh_vec3 x, sh_vec3 w,
+                            double tmax) {
+  return m->present && m->type == SH_MEDIUM_ATMOSPHERE &&
+         sh_atmosphere_ground_blocks(&m->atmo, x, w, tmax);
+}
+
 sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
                            double t1) {
   if (!m->present) return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_atmosphere_majorant(&m->atmo, o, d, t0, t1);
   if (m->type != SH_MEDIUM_HEIGHT_FOG) return m->sigma_t;
   double y = fmin(o.y + t0 * d.y, o.y + t1 * d.y);
   return sh_scale(m->sigma_t, fog_density(m, y));
@@ -190,6 +245,8 @@ static double fog_invert(const sh_medium *m, sh_vec3 o, sh_vec3 d, double a,
 double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
                                  double a, double b, double u,
                                  double *inv_pdf) {
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return sh_atmosphere_sample_distance(&m->atmo, o, d, a, b, u, inv_pdf);
   double k = (m->sigma_t.x + m->sigma_t.y + m->sigma_t.z) / 3.0;
   double len = b - a;
   if (m->type != SH_MEDIUM_HEIGHT_FOG) {
@@ -241,6 +298,7 @@ const char *sh_medium_type_name(sh_medium_type type) {
   switch (type) {
   case SH_MEDIUM_HOMOGENEOUS: return "homogeneous";
   case SH_MEDIUM_HEIGHT_FOG: return "height_fog";
+  case SH_MEDIUM_ATMOSPHERE: return "atmosphere";
   }
   return "unknown";
 }

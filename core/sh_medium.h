@@ -1,7 +1,8 @@
 /* The participating medium: normalised phase functions, the region the
- * medium fills, and what depends on its kind (homogeneous or height fog):
- * optical depth, transmittance, the coefficients and the phase at a point,
- * a majorant and distance sampling. */
+ * medium fills, and what depends on its kind (homogeneous, height fog or
+ * atmosphere): optical depth, transmittance, the coefficients and the
+ * phase at a point, a majorant, distance sampling and, for an atmosphere,
+ * the ground. */
 #ifndef SH_MEDIUM_H
 #define SH_MEDIUM_H
 
@@ -35,6 +36,14 @@ int sh_box_clip(sh_vec3 bmin, sh_vec3 bmax, sh_vec3 o, sh_vec3 d, double tmin,
  *   / x (g(0) = 1): the contract's sigma_t H / d.y (exp(..t0) - exp(..t1))
  *   rewritten without the cancellation of a nearly horizontal ray and
  *   without overflow far below the base. Optical depth is sigma_t times it.
+ * - atmosphere (sh_atmosphere.h): Rayleigh, Mie and ozone densities of the
+ *   height above a sphere; the region is the ball of top_radius, and the
+ *   ground sphere an opaque surface (sh_medium_ground_hit, _blocks).
+ *   Optical depth by Gauss-Legendre panels adapted to the scale heights,
+ *   relative error below SH_ATMOSPHERE_DEPTH_REL_ERROR (measured against a
+ *   fine quadrature); INFINITY for a span through the planet. The phase
+ *   differs per channel (the mixture weighted by each part's sigma_s):
+ *   use sh_medium_scattering_at or sh_medium_phase_rgb_at.
  *
  * "Span" functions take o + t d with d a unit vector and [t0, t1] already
  * inside the region (sh_medium_clip); "segment" and "ray" functions clip
@@ -42,7 +51,7 @@ int sh_box_clip(sh_vec3 bmin, sh_vec3 bmax, sh_vec3 o, sh_vec3 d, double tmin,
  * return 0 optical depth (transmittance 1, coefficients 0) without a
  * medium. Nothing here allocates or fails. */
 
-/* The region the medium fills (a box): clips o + t d, t in [tmin, tmax],
+/* The region the medium fills (a box; an atmosphere's ball): clips o + t d, t in [tmin, tmax],
  * to it. Returns 1 and the interval in *t0 < *t1 if it is not empty; 0
  * without a medium. */
 int sh_medium_clip(const sh_medium *m, sh_vec3 o, sh_vec3 d, double tmin,
@@ -77,12 +86,39 @@ sh_vec3 sh_medium_sigma_s_at(const sh_medium *m, sh_vec3 p);
 sh_vec3 sh_medium_sigma_a_at(const sh_medium *m, sh_vec3 p);
 sh_vec3 sh_medium_sigma_t_at(const sh_medium *m, sh_vec3 p);
 
-/* The phase function at p (the same everywhere for both kinds today). */
+/* The phase function at p, for the kinds with one phase function
+ * (homogeneous and height fog: the same everywhere). For an atmosphere it
+ * is Rayleigh's alone: use the two below. */
 const sh_phase *sh_medium_phase_at(const sh_medium *m, sh_vec3 p);
 
+/* The phase function at p per RGB channel, normalised: for an atmosphere
+ * the mixture of Rayleigh's and Mie's phase weighted by their sigma_s at
+ * p; for the other kinds the medium's phase in every channel. */
+sh_vec3 sh_medium_phase_rgb_at(const sh_medium *m, sh_vec3 p,
+                               double cos_alpha);
+
+/* sigma_s(p) times the phase function at p, per channel: what a renderer
+ * multiplies the incident radiance by, for every kind (0 without a
+ * medium). */
+sh_vec3 sh_medium_scattering_at(const sh_medium *m, sh_vec3 p,
+                                double cos_alpha);
+
+/* The ground of an atmosphere (an opaque Lambert sphere of ground_radius
+ * with ground_albedo); both 0 for the other kinds and without a medium.
+ * sh_medium_ground_hit: the nearest ground point on o + t d (d unit), t in
+ * (0, tmax), in *t. sh_medium_ground_blocks: 1 if the ground lies on
+ * x + t w (w unit), t in (0, tmax) (the planet's shadow; exact for points
+ * on the ground, without offsets). */
+int sh_medium_ground_hit(const sh_medium *m, sh_vec3 o, sh_vec3 d,
+                         double tmax, double *t);
+int sh_medium_ground_blocks(const sh_medium *m, sh_vec3 x, sh_vec3 w,
+                            double tmax);
+
 /* A majorant of sigma_t over the span o + t d, t in [t0, t1] (d unit,
- * inside the region): sigma_t >= it nowhere exceeded there. Exact (the
- * maximum) for both kinds: height fog's is at the span's lowest point. */
+ * inside the region): sigma_t nowhere exceeds it there. Exact (the
+ * maximum) for homogeneous media and height fog (at the span's lowest
+ * point); for an atmosphere Rayleigh's and Mie's at the lowest point plus
+ * the ozone's largest value over the span's heights. */
 sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
                            double t1);
 
@@ -90,7 +126,9 @@ sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
  * the region), by the transmittance of the mean channel: density
  * proportional to k(t) exp(-tau_k(a, t)), k the mean of sigma_t's channels
  * at t and tau_k its optical depth, normalised over [a, b] by inverting
- * the closed-form optical depth. Where the span's mean optical depth is
+ * the closed-form optical depth (for an atmosphere, its piecewise
+ * constant approximation over the quadrature's panels, inverted exactly:
+ * sh_atmosphere_sample_distance). Where the span's mean optical depth is
  * below 1e-6 the density is uniform instead. u in [0, 1). Returns the
  * sample t and sets *inv_pdf to 1 / its density. */
 double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,

@@ -21,12 +21,21 @@ static const char *const top_keys[] = {
     "lights", "materials", "shapes", "render",     NULL};
 static const char *const camera_keys[] = {
     "position", "look_at", "up", "fov_y_deg", "width", "height", NULL};
-static const char *const medium_keys[] = {"type", "sigma_s", "sigma_a",
-                                          "phase", "bounds", NULL};
+static const char *const medium_type_key[] = {"type", NULL};
+/* Homogeneous media and height fog; "type" is common to every kind. */
+static const char *const medium_keys[] = {"sigma_s", "sigma_a", "phase",
+                                          "bounds", NULL};
 static const char *const height_fog_keys[] = {"base_height", "scale_height",
                                               NULL};
-/* In the order of sh_medium_type; "atmosphere" is in the contract but not
- * implemented yet (issue 12): it is named so that it gets its own error. */
+static const char *const atmosphere_keys[] = {
+    "center", "ground_radius", "top_radius", "ground_albedo", "rayleigh",
+    "mie",    "ozone",         NULL};
+static const char *const rayleigh_keys[] = {"sigma_s", "scale_height", NULL};
+static const char *const mie_keys[] = {"sigma_s", "sigma_a", "scale_height",
+                                       "phase", NULL};
+static const char *const ozone_keys[] = {"sigma_a", "center_height", "width",
+                                         NULL};
+/* In the order of sh_medium_type. */
 static const char *const medium_type_names[] = {"homogeneous", "height_fog",
                                                 "atmosphere", NULL};
 static const char *const bounds_keys[] = {"min", "max", NULL};
@@ -87,23 +96,25 @@ sh_status sh__parse_camera(sh__parser *p, json_t *root) {
   return SH_OK;
 }
 
-static sh_status parse_phase(sh__parser *p, json_t *medium) {
+/* Reads the optional phase object member "phase" of `holder` into *ph
+ * (isotropic when absent, unless `required`), and where its type stands
+ * into *line, *column when they are not NULL. */
+static sh_status parse_phase(sh__parser *p, json_t *holder, int required,
+                             sh_phase *ph, int *line, int *column) {
   sh__pctx *c = &p->c;
-  sh_phase *ph = &p->scene->medium.phase;
   json_t *o;
   int type;
   sh_status st;
   char what[80];
   ph->type = SH_PHASE_ISOTROPIC;
   ph->g = 0;
-  if ((st = sh__object(c, medium, "phase", 0, &o)) || !o) return st;
+  if ((st = sh__object(c, holder, "phase", required, &o)) || !o) return st;
   sh__push_key(c, "phase");
   if ((st = sh__choice(c, o, "type", 1, phase_names, 0, "phase function",
                        &type)))
     return st;
   ph->type = (sh_phase_type)type;
-  sh__where(c, "type", &p->scene->medium.phase_line,
-            &p->scene->medium.phase_column);
+  if (line) sh__where(c, "type", line, column);
   snprintf(what, sizeof what, "a phase function of type '%s'",
            phase_names[type]);
   if (ph->type == SH_PHASE_HENYEY_GREENSTEIN ||
@@ -119,6 +130,77 @@ static sh_status parse_phase(sh__parser *p, json_t *medium) {
   return SH_OK;
 }
 
+/* Reads the atmosphere's own members (the medium object `o` is the
+ * current path) into m->atmo, and derives the medium's box, its largest
+ * coefficients and its phase (sh_scene.h). */
+static sh_status parse_atmosphere(sh__parser *p, json_t *o, sh_medium *m) {
+  sh__pctx *c = &p->c;
+  sh_atmosphere *a = &m->atmo;
+  json_t *r, *mie, *oz;
+  sh_status st;
+  if ((st = sh__check_keys(c, o, SH__KEYS(medium_type_key, atmosphere_keys),
+                           "a medium of type 'atmosphere'")) ||
+      (st = sh__vec3(c, o, "center", 1, sh_v3s(0), sh__any, &a->center)) ||
+      (st = sh__number(c, o, "ground_radius", 1, 0, sh__gt0,
+                       &a->ground_radius)) ||
+      (st = sh__number(c, o, "top_radius", 1, 0, sh__gt0, &a->top_radius)))
+    return st;
+  if (!(a->top_radius > a->ground_radius)) {
+    char g[40], t[40];
+    sh__fmt_num(a->ground_radius, g, sizeof g);
+    sh__fmt_num(a->top_radius, t, sizeof t);
+    return sh__fail_at(c, "top_radius", SH_ERR_SCENE,
+                       "expected top_radius > ground_radius (%s), found %s", g,
+                       t);
+  }
+  if ((st = sh__vec3(c, o, "ground_albedo", 0, sh_v3s(0.1), sh__quantity,
+                     &a->ground_albedo)) ||
+      (st = sh__object(c, o, "rayleigh", 1, &r)))
+    return st;
+  sh__push_key(c, "rayleigh");
+  if ((st = sh__check_keys(c, r, SH__KEYS(rayleigh_keys),
+                           "the atmosphere's rayleigh")) ||
+      (st = sh__vec3(c, r, "sigma_s", 1, sh_v3s(0), sh__quantity,
+                     &a->rayleigh_sigma_s)) ||
+      (st = sh__number(c, r, "scale_height", 1, 0, sh__gt0, &a->rayleigh_H)))
+    return st;
+  sh__pop(c);
+  if ((st = sh__object(c, o, "mie", 0, &mie))) return st;
+  if ((a->has_mie = mie != NULL)) {
+    sh__push_key(c, "mie");
+    if ((st = sh__check_keys(c, mie, SH__KEYS(mie_keys),
+                             "the atmosphere's mie")) ||
+        (st = sh__vec3(c, mie, "sigma_s", 1, sh_v3s(0), sh__quantity,
+                       &a->mie_sigma_s)) ||
+        (st = sh__vec3(c, mie, "sigma_a", 0, sh_v3s(0), sh__quantity,
+                       &a->mie_sigma_a)) ||
+        (st = sh__number(c, mie, "scale_height", 1, 0, sh__gt0, &a->mie_H)) ||
+        (st = parse_phase(p, mie, 1, &a->mie_phase, NULL, NULL)))
+      return st;
+    sh__pop(c);
+  }
+  if ((st = sh__object(c, o, "ozone", 0, &oz))) return st;
+  if ((a->has_ozone = oz != NULL)) {
+    sh__push_key(c, "ozone");
+    if ((st = sh__check_keys(c, oz, SH__KEYS(ozone_keys),
+                             "the atmosphere's ozone")) ||
+        (st = sh__vec3(c, oz, "sigma_a", 1, sh_v3s(0), sh__quantity,
+                       &a->ozone_sigma_a)) ||
+        (st = sh__number(c, oz, "center_height", 1, 0, sh__any,
+                         &a->ozone_height)) ||
+        (st = sh__number(c, oz, "width", 1, 0, sh__gt0, &a->ozone_width)))
+      return st;
+    sh__pop(c);
+  }
+  m->sigma_s = sh_add(a->rayleigh_sigma_s, a->mie_sigma_s);
+  m->sigma_a = sh_add(a->mie_sigma_a, a->ozone_sigma_a);
+  m->phase.type = SH_PHASE_RAYLEIGH;
+  m->phase.g = 0;
+  m->bmin = sh_sub(a->center, sh_v3s(a->top_radius));
+  m->bmax = sh_add(a->center, sh_v3s(a->top_radius));
+  return SH_OK;
+}
+
 sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   sh__pctx *c = &p->c;
   sh_medium *m = &p->scene->medium;
@@ -130,35 +212,40 @@ sh_status sh__parse_medium(sh__parser *p, json_t *root) {
   if ((st = sh__choice(c, o, "type", 0, medium_type_names, 0, "medium type",
                        &type)))
     return st;
-  if (type == 2)
-    return sh__fail_at(c, "type", SH_ERR_SCENE,
-                       "the medium type 'atmosphere' is not implemented yet "
-                       "(issue 12); homogeneous and height_fog are");
   m->type = (sh_medium_type)type;
   sh__where(c, json_object_get(o, "type") ? "type" : NULL, &m->line,
             &m->column);
-  if (m->type == SH_MEDIUM_HEIGHT_FOG) {
-    if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys, height_fog_keys),
-                             "a medium of type 'height_fog'")) ||
-        (st = sh__number(c, o, "base_height", 0, 0, sh__any,
-                         &m->base_height)) ||
-        (st = sh__number(c, o, "scale_height", 1, 0, sh__gt0,
-                         &m->scale_height)))
+  if (m->type == SH_MEDIUM_ATMOSPHERE) {
+    if ((st = parse_atmosphere(p, o, m))) return st;
+  } else {
+    if (m->type == SH_MEDIUM_HEIGHT_FOG) {
+      if ((st = sh__check_keys(
+               c, o, SH__KEYS(medium_type_key, medium_keys, height_fog_keys),
+               "a medium of type 'height_fog'")) ||
+          (st = sh__number(c, o, "base_height", 0, 0, sh__any,
+                           &m->base_height)) ||
+          (st = sh__number(c, o, "scale_height", 1, 0, sh__gt0,
+                           &m->scale_height)))
+        return st;
+    } else if ((st = sh__check_keys(c, o, SH__KEYS(medium_type_key, medium_keys),
+                                    "a homogeneous medium"))) {
       return st;
-  } else if ((st = sh__check_keys(c, o, SH__KEYS(medium_keys),
-                                  "a homogeneous medium"))) {
-    return st;
+    }
+    if ((st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__quantity,
+                       &m->sigma_s)) ||
+        (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__quantity,
+                       &m->sigma_a)) ||
+        (st = parse_phase(p, o, 0, &m->phase, &m->phase_line,
+                          &m->phase_column)) ||
+        (st = sh__object(c, o, "bounds", 1, &b)))
+      return st;
+    sh__push_key(c, "bounds");
+    if ((st = sh__check_keys(c, b, SH__KEYS(bounds_keys),
+                             "the medium's bounds")) ||
+        (st = sh__min_max(c, b, &m->bmin, &m->bmax)))
+      return st;
+    sh__pop(c);
   }
-  if ((st = sh__vec3(c, o, "sigma_s", 1, sh_v3s(0), sh__quantity, &m->sigma_s)) ||
-      (st = sh__vec3(c, o, "sigma_a", 0, sh_v3s(0), sh__quantity, &m->sigma_a)) ||
-      (st = parse_phase(p, o)) || (st = sh__object(c, o, "bounds", 1, &b)))
-    return st;
-  sh__push_key(c, "bounds");
-  if ((st = sh__check_keys(c, b, SH__KEYS(bounds_keys),
-                           "the medium's bounds")) ||
-      (st = sh__min_max(c, b, &m->bmin, &m->bmax)))
-    return st;
-  sh__pop(c);
   m->sigma_t = sh_add(m->sigma_s, m->sigma_a);
   m->present = 1;
   sh__pop(c);

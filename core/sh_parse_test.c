@@ -422,6 +422,58 @@ static void test_bounds(void) {
   sh_scene_free(s);
 }
 
+/* An atmosphere with every key (Bruneton 2017 in km), and the defaults
+ * and derived values of one with Rayleigh alone. */
+static void test_atmosphere(void) {
+  sh_error err;
+  sh_scene *s = NULL;
+  SH_CHECK(sh_scene_parse(
+               MINIMAL_HEAD ",\n\"medium\": {\"type\": \"atmosphere\", "
+               "\"center\": [1, -6360, 2], \"ground_radius\": 6360, "
+               "\"top_radius\": 6420, \"ground_albedo\": [0.3, 0.2, 0.1], "
+               "\"rayleigh\": {\"sigma_s\": [5.802e-3, 13.558e-3, 33.1e-3], "
+               "\"scale_height\": 8}, \"mie\": {\"sigma_s\": [3.996e-3, "
+               "3.996e-3, 3.996e-3], \"sigma_a\": [0.444e-3, 0.444e-3, "
+               "0.444e-3], \"scale_height\": 1.2, \"phase\": {\"type\": "
+               "\"cornette_shanks\", \"g\": 0.8}}, \"ozone\": {\"sigma_a\": "
+               "[0.650e-3, 1.881e-3, 0.085e-3], \"center_height\": 25, "
+               "\"width\": 30}}}",
+               "atmo.json", NULL, &s, &err) == SH_OK);
+  if (s) {
+    const sh_medium *m = &s->medium;
+    const sh_atmosphere *a = &m->atmo;
+    SH_CHECK(m->present && m->type == SH_MEDIUM_ATMOSPHERE);
+    SH_CHECK(a->center.x == 1 && a->center.y == -6360 && a->center.z == 2);
+    SH_CHECK(a->ground_radius == 6360 && a->top_radius == 6420);
+    SH_CHECK(a->ground_albedo.x == 0.3 && a->ground_albedo.z == 0.1);
+    SH_CHECK(a->rayleigh_sigma_s.z == 33.1e-3 && a->rayleigh_H == 8);
+    SH_CHECK(a->has_mie && a->mie_H == 1.2 && a->mie_sigma_a.y == 0.444e-3);
+    SH_CHECK(a->mie_phase.type == SH_PHASE_CORNETTE_SHANKS && a->mie_phase.g == 0.8);
+    SH_CHECK(a->has_ozone && a->ozone_height == 25 && a->ozone_width == 30);
+    SH_CHECK(a->ozone_sigma_a.y == 1.881e-3);
+    /* Derived: the box around the top sphere, the largest coefficients. */
+    SH_CHECK(m->bmin.x == 1 - 6420 && m->bmax.y == -6360 + 6420);
+    SH_CHECK_NEAR(m->sigma_t.x, 5.802e-3 + 3.996e-3 + 0.444e-3 + 0.650e-3,
+                  1e-15, 0);
+    SH_CHECK(m->phase.type == SH_PHASE_RAYLEIGH);
+    sh_scene_free(s);
+  }
+  s = NULL;
+  SH_CHECK(sh_scene_parse(
+               MINIMAL_HEAD ",\n\"medium\": {\"type\": \"atmosphere\", "
+               "\"center\": [0, 0, 0], \"ground_radius\": 1, "
+               "\"top_radius\": 1.5, \"rayleigh\": {\"sigma_s\": [1, 2, 3], "
+               "\"scale_height\": 0.1}}}",
+               "atmo2.json", NULL, &s, &err) == SH_OK);
+  if (s) {
+    const sh_atmosphere *a = &s->medium.atmo;
+    SH_CHECK(!a->has_mie && !a->has_ozone);
+    SH_CHECK(a->ground_albedo.x == 0.1 && a->ground_albedo.y == 0.1);
+    SH_CHECK(s->medium.sigma_t.z == 3);
+    sh_scene_free(s);
+  }
+}
+
 /* A bad scene, what the parser must say about it, and where. */
 typedef struct bad_case {
   const char *text;
@@ -519,9 +571,36 @@ static const bad_case bad_cases[] = {
           "\"cornette_shanks\"}, \"bounds\": {\"min\": [0, 0, 0], "
           "\"max\": [1, 1, 1]}}}",
      SH_ERR_SCENE, 3, 43, "medium.phase", "missing required key 'g'"},
-    {HEAD "\"medium\": {\"type\": \"atmosphere\", \"sigma_s\": [1, 1, 1]}}",
-     SH_ERR_SCENE, 3, 20, "medium.type",
-     "the medium type 'atmosphere' is not implemented yet"},
+#define ATMO_HEAD HEAD "\"medium\": {\"type\": \"atmosphere\", \"center\": [0, -6360, 0],\n"
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6300, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 8}}}",
+     SH_ERR_SCENE, 4, 38, "medium.top_radius",
+     "expected top_radius > ground_radius (6360), found 6300"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420}}", SH_ERR_SCENE,
+     3, 11, "medium", "missing required key 'rayleigh'"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"sigma_s\": [1, 1, 1]}}",
+     SH_ERR_SCENE, 4, 44, "medium.sigma_s",
+     "unknown key 'sigma_s' in a medium of type 'atmosphere'"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": -8}}}",
+     SH_ERR_SCENE, 4, 95, "medium.rayleigh.scale_height", "found the number -8"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 8},\n\"mie\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 1.2}}}",
+     SH_ERR_SCENE, 5, 8, "medium.mie", "missing required key 'phase'"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 8},\n\"mie\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 1.2, \"g\": 0.8}}}",
+     SH_ERR_SCENE, 5, 52, "medium.mie.g",
+     "unknown key 'g' in the atmosphere's mie"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 8},\n\"ozone\": "
+               "{\"sigma_a\": [1, 1, 1], \"center_height\": 25, \"width\": 0}}}",
+     SH_ERR_SCENE, 5, 63, "medium.ozone.width", "found the number 0"},
+    {ATMO_HEAD "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "
+               "{\"sigma_s\": [1, 1, 1], \"scale_height\": 8}, \"bounds\": {}}}",
+     SH_ERR_SCENE, 4, 99, "medium.bounds",
+     "unknown key 'bounds' in a medium of type 'atmosphere'"},
     {HEAD "\"medium\": {\"type\": \"heigth_fog\", \"sigma_s\": [1, 1, 1]}}",
      SH_ERR_SCENE, 3, 20, "medium.type",
      "unknown medium type 'heigth_fog'; did you mean 'height_fog'?"},
@@ -1018,6 +1097,7 @@ static void remove_tmpdir(void) {
 }
 
 int main(void) {
+  test_atmosphere();
   if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_parse_test"))
     return EXIT_FAILURE;
   write_fixtures();

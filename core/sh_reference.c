@@ -58,6 +58,7 @@ static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
     sh_vec3 e = sh_light_incident(l, p, &wi, &dist);
     double cosl = sh_dot(n, wi);
     if (cosl <= 0 || sh_is_black(e)) continue;
+    if (sh_medium_ground_blocks(&scene->medium, p, wi, dist)) continue;
     double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
     sh_vec3 vis = hooked ? w->vis[i]
                          : sh_rt_visibility(w->job->rt, origin, wi, tmax,
@@ -113,14 +114,53 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
   return L;
 }
 
+/* An atmosphere's ground at p (sh_medium.h): a Lambert sphere of
+ * ground_albedo lit by every light through the air, with the shadows of
+ * the scene's surfaces, and the ambient term as a surface gets it. Its
+ * normal is exact (the sphere's radius direction), so a point on it needs
+ * no offset for the planet's own shadow (sh_medium_ground_blocks). */
+static sh_vec3 shade_ground(worker *w, sh_vec3 p) {
+  const sh_scene *scene = w->job->scene;
+  const sh_medium *m = &scene->medium;
+  sh_vec3 albedo = m->atmo.ground_albedo;
+  sh_vec3 n = sh_normalize(sh_sub(p, m->atmo.center));
+  sh_vec3 L = sh_mul(scene->ambient, albedo);
+  sh_vec3 origin = sh_rt_offset(w->job->rt, p, n);
+  for (int i = 0; i < scene->nlights; i++) {
+    sh_vec3 wi;
+    double dist;
+    sh_vec3 e = sh_light_incident(&scene->lights[i], p, &wi, &dist);
+    double cosl = sh_dot(n, wi);
+    if (cosl <= 0 || sh_is_black(e) || sh_medium_ground_blocks(m, p, wi, dist))
+      continue;
+    double tmax = isinf(dist) ? INFINITY : dist * (1.0 - 1e-7);
+    sh_vec3 vis = sh_rt_visibility(w->job->rt, origin, wi, tmax, &w->counters);
+    if (sh_is_black(vis)) continue;
+    sh_vec3 tr = isinf(dist) ? sh_medium_transmittance_ray(m, p, wi)
+                             : sh_medium_transmittance(m, p, scene->lights[i].position);
+    L = sh_add(L, sh_scale(sh_mul(sh_mul(albedo, e), sh_mul(vis, tr)),
+                           SH_INV_PI * cosl));
+  }
+  return L;
+}
+
 static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
   const sh_scene *scene = w->job->scene;
   sh_hit h;
   int hit = sh_rt_intersect(w->job->rt, o, d, 0.0, INFINITY, &h, &w->counters);
   double tend = hit ? h.t : INFINITY;
-  sh_vec3 L = hit ? shade(w, &h, d, depth, rng)
-                : sh_scene_background_radiance(scene, d);
   const sh_medium *m = &scene->medium;
+  double tg;
+  sh_vec3 L;
+  if (sh_medium_ground_hit(m, o, d, tend, &tg)) {
+    /* The ground (double precision about the planet's centre) is nearer
+     * than every surface. */
+    tend = tg;
+    L = shade_ground(w, sh_madd(o, d, tg));
+  } else {
+    L = hit ? shade(w, &h, d, depth, rng)
+            : sh_scene_background_radiance(scene, d);
+  }
   double t0, t1;
   if (sh_medium_clip(m, o, d, 0.0, tend, &t0, &t1)) {
     L = sh_mul(L, sh_medium_transmittance_span(m, o, d, t0, t1));

@@ -44,20 +44,50 @@ typedef struct sh_phase {
  * optical depth, coefficients and phase at a point. */
 typedef enum sh_medium_type {
   SH_MEDIUM_HOMOGENEOUS, /* the coefficients are the same everywhere */
-  SH_MEDIUM_HEIGHT_FOG   /* every coefficient times exp(-(y - base) / H) */
+  SH_MEDIUM_HEIGHT_FOG,  /* every coefficient times exp(-(y - base) / H) */
+  SH_MEDIUM_ATMOSPHERE   /* a planet's air: sh_atmosphere */
 } sh_medium_type;
+
+/* A planet's air (the contract's "atmosphere", after Nishita et al. 1993
+ * and Bruneton 2017), in scene units: a scene in kilometres gives its
+ * coefficients per kilometre. h(p) = |p - center| - ground_radius is the
+ * height above the ground. At p:
+ *   sigma_s = rayleigh_sigma_s exp(-h / rayleigh_H) + mie_sigma_s rho_M,
+ *   sigma_a = mie_sigma_a rho_M + ozone_sigma_a rho_O,
+ * rho_M = exp(-h / mie_H), rho_O = max(0, 1 - |h - ozone_height| /
+ * (ozone_width / 2)); a part that is absent has its coefficients 0. */
+typedef struct sh_atmosphere {
+  sh_vec3 center;        /* the planet's centre */
+  double ground_radius;  /* R_g > 0: the ground, an opaque Lambert sphere */
+  double top_radius;     /* R_t > R_g: vacuum above */
+  sh_vec3 ground_albedo; /* default 0.1 grey */
+  sh_vec3 rayleigh_sigma_s; /* at the ground; phase `rayleigh` */
+  double rayleigh_H;        /* > 0 */
+  int has_mie;
+  sh_vec3 mie_sigma_s, mie_sigma_a; /* at the ground */
+  double mie_H;                     /* > 0 */
+  sh_phase mie_phase;               /* any phase object */
+  int has_ozone;
+  sh_vec3 ozone_sigma_a;            /* at the tent's peak */
+  double ozone_height, ozone_width; /* the peak's height; width > 0 */
+} sh_atmosphere;
 
 typedef struct sh_medium {
   int present;             /* 0: vacuum everywhere, the rest is unused */
   sh_medium_type type;     /* 0 (homogeneous) unless the scene says */
   /* Per unit length, >= 0: everywhere for a homogeneous medium, at
-   * base_height for height fog. */
+   * base_height for height fog. For an atmosphere, derived: the largest
+   * values anywhere (sigma_s at the ground, sigma_a the Mie's at the
+   * ground plus the ozone's peak), so that sigma_t is a majorant. */
   sh_vec3 sigma_s, sigma_a;
   sh_vec3 sigma_t;          /* derived: sigma_s + sigma_a */
   double base_height;       /* height fog: the Y of the reference level */
   double scale_height;      /* height fog: H > 0 */
-  sh_phase phase;
-  sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax */
+  sh_phase phase;           /* atmosphere: rayleigh (Mie's is its own) */
+  sh_vec3 bmin, bmax;       /* the box the medium fills; bmin < bmax; for
+                               an atmosphere the box around its top
+                               sphere (derived) */
+  sh_atmosphere atmo;       /* atmosphere only */
   int line, column; /* of medium.type (else of the medium) in the file; 0
                        if unknown: where tools that refuse a kind point */
   int phase_line, phase_column; /* of medium.phase.type; 0 if unknown */

@@ -40,10 +40,25 @@ static int same_camera(const sh_camera *a, const sh_camera *b) {
          a->height == b->height;
 }
 
+static int same_atmosphere(const sh_atmosphere *a, const sh_atmosphere *b) {
+  return same_vec(a->center, b->center) && a->ground_radius == b->ground_radius &&
+         a->top_radius == b->top_radius &&
+         same_vec(a->ground_albedo, b->ground_albedo) &&
+         same_vec(a->rayleigh_sigma_s, b->rayleigh_sigma_s) &&
+         a->rayleigh_H == b->rayleigh_H && a->has_mie == b->has_mie &&
+         same_vec(a->mie_sigma_s, b->mie_sigma_s) &&
+         same_vec(a->mie_sigma_a, b->mie_sigma_a) && a->mie_H == b->mie_H &&
+         a->mie_phase.type == b->mie_phase.type &&
+         a->mie_phase.g == b->mie_phase.g && a->has_ozone == b->has_ozone &&
+         same_vec(a->ozone_sigma_a, b->ozone_sigma_a) &&
+         a->ozone_height == b->ozone_height && a->ozone_width == b->ozone_width;
+}
+
 static int same_medium(const sh_medium *a, const sh_medium *b) {
   if (a->present != b->present) return 0;
   return !a->present ||
-         (a->type == b->type && a->base_height == b->base_height &&
+         (a->type == b->type && same_atmosphere(&a->atmo, &b->atmo) &&
+          a->base_height == b->base_height &&
           a->scale_height == b->scale_height &&
           same_vec(a->sigma_s, b->sigma_s) && same_vec(a->sigma_a, b->sigma_a) &&
           a->phase.type == b->phase.type && a->phase.g == b->phase.g &&

@@ -90,13 +90,40 @@ static json_t *camera(const sh_camera *c) {
                    c->fov_y_deg, "width", c->width, "height", c->height);
 }
 
-static json_t *medium(const sh_medium *m) {
+static json_t *phase_object(const sh_phase *ph) {
   static const char *types[] = {"isotropic", "henyey_greenstein", "nishita_hazy",
                                 "nishita_murky", "rayleigh", "cornette_shanks"};
-  json_t *phase = json_pack("{s:s}", "type", types[m->phase.type]);
-  if (phase && (m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ||
-                m->phase.type == SH_PHASE_CORNETTE_SHANKS))
-    json_object_set_new(phase, "g", json_real(m->phase.g));
+  json_t *phase = json_pack("{s:s}", "type", types[ph->type]);
+  if (phase && (ph->type == SH_PHASE_HENYEY_GREENSTEIN ||
+                ph->type == SH_PHASE_CORNETTE_SHANKS))
+    json_object_set_new(phase, "g", json_real(ph->g));
+  return phase;
+}
+
+/* An atmosphere's own keys (docs/scene-format.md, "atmosphere"). */
+static json_t *atmosphere(const sh_atmosphere *a) {
+  json_t *o = json_pack(
+      "{s:s, s:o, s:f, s:f, s:o, s:{s:o, s:f}}", "type", "atmosphere", "center",
+      vec(a->center), "ground_radius", a->ground_radius, "top_radius",
+      a->top_radius, "ground_albedo", vec(a->ground_albedo), "rayleigh",
+      "sigma_s", vec(a->rayleigh_sigma_s), "scale_height", a->rayleigh_H);
+  if (o && a->has_mie)
+    json_object_set_new(o, "mie",
+                        json_pack("{s:o, s:o, s:f, s:o}", "sigma_s",
+                                  vec(a->mie_sigma_s), "sigma_a",
+                                  vec(a->mie_sigma_a), "scale_height", a->mie_H,
+                                  "phase", phase_object(&a->mie_phase)));
+  if (o && a->has_ozone)
+    json_object_set_new(o, "ozone",
+                        json_pack("{s:o, s:f, s:f}", "sigma_a",
+                                  vec(a->ozone_sigma_a), "center_height",
+                                  a->ozone_height, "width", a->ozone_width));
+  return o;
+}
+
+static json_t *medium(const sh_medium *m) {
+  if (m->type == SH_MEDIUM_ATMOSPHERE) return atmosphere(&m->atmo);
+  json_t *phase = phase_object(&m->phase);
   json_t *o = json_pack("{s:o, s:o, s:o, s:{s:o, s:o}}", "sigma_s",
                         vec(m->sigma_s), "sigma_a", vec(m->sigma_a), "phase",
                         phase, "bounds", "min", vec(m->bmin), "max",
