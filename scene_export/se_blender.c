@@ -193,6 +193,27 @@ static void add_card(blend *b, const sh_light *l, int image, const char *engine,
   json_array_append_new(cards, card);
 }
 
+/* The sun's disks (docs/scene-format.md, "The sun's disk") for the world
+ * shader, which draws them where camera, mirror and refracted rays leave
+ * the scene: per directional light with a disk, the direction towards the
+ * sun (Blender's frame), the chord |d - s| at the disk's edge, 2 sin(half
+ * angle / 2), which the shader tests in single precision without the loss
+ * of 1 - cos, and the radiance irradiance / Omega. */
+static json_t *sun_disks(const sh_scene *s) {
+  const se_frame f = se_frame_blender();
+  json_t *a = json_array();
+  for (int i = 0; a && i < s->nlights; i++) {
+    const sh_light *l = &s->lights[i];
+    if (l->type != SH_LIGHT_DIRECTIONAL || !(l->disk_solid_angle > 0)) continue;
+    json_array_append_new(
+        a, json_pack("{s:o, s:f, s:o}", "direction",
+                     vec(se_frame_dir(&f, sh_neg(l->direction))), "chord",
+                     sqrt(l->disk_solid_angle / SH_PI), "radiance",
+                     vec(sh_scale(l->irradiance, 1.0 / l->disk_solid_angle))));
+  }
+  return a;
+}
+
 static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
   const sh_light *l = &b->scene->lights[i];
   sh_vec3 unit, t, bt;
@@ -202,13 +223,8 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
     double e = split_colour(l->irradiance, &unit);
     /* The lamp's angle stays 0: the format shades with one direction, and
      * a Cycles 3.4 sun lamp with an angle is seen by no camera ray (a 10
-     * degree sun straight ahead rendered 0 on a black world). */
-    if (l->angular_diameter_deg > 0)
-      se_note(b->notes,
-              "lights[%d]: the sun's disk (angular_diameter_deg %g) is not "
-              "drawn: Blender shows no sun lamp to camera rays; the shading, "
-              "with one direction, is the format's.",
-              i, l->angular_diameter_deg);
+     * degree sun straight ahead rendered 0 on a black world); the disk is
+     * drawn by the world instead (sun_disks). */
     sh_basis(l->direction, &t, &bt);
     o = json_pack("{s:s, s:o, s:o, s:f}", "type", "SUN", "matrix",
                   frame(t, bt, sh_neg(l->direction), sh_madd(b->center, l->direction,
@@ -527,6 +543,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       lights, "materials", materials, "meshes", meshes, "images", images, "cards",
       cards);
   if (root && scene->medium.present) json_object_set_new(root, "medium", medium(&b));
+  if (root) json_object_set_new(json_object_get(root, "world"), "sun_disks", sun_disks(scene));
   if (root) {
     /* The notes as sentences (a JSON string is data, so the punctuation
      * stays; the add-on's import shows them as its warnings); a note that

@@ -48,9 +48,9 @@ TEST_SCENES = {
     "phase_nishita_murky": {"pov": "exact", "cycles": "approx", "eevee": "report"},
     "phase_rayleigh": {"pov": "exact", "cycles": "approx", "eevee": "report"},
     "everything": {"pov": "approx", "cycles": "approx", "eevee": "report"},
-    # The sun's disk: POV-Ray draws it (a sky_sphere layer); Blender shows
-    # no sun lamp to camera rays, so there the disk is missing (a note).
-    "sun_disk": {"pov": "exact", "cycles": "report", "eevee": "report"},
+    # The sun's disk: POV-Ray draws it as a sky_sphere layer, Blender in
+    # the world shader (a sun lamp is seen by no camera ray).
+    "sun_disk": {"pov": "exact", "cycles": "exact", "eevee": "report"},
 }
 
 CANONICAL_SCENES = ["lmm_lens", "lmm_table", "lmm_table_glass", "mountains_sun",

@@ -237,6 +237,47 @@ def transmittance_setup(data, engine):
     return t
 
 
+def sun_disks(tree, world):
+    """The background radiance plus the sun's disks (docs/scene-format.md,
+    "The sun's disk") as a colour socket, or None without disks: each
+    disk's radiance where the world direction (Generated, a unit vector in
+    world shaders) lies within `chord` of the direction towards the sun,
+    |d - s| < chord = 2 sin(half angle / 2), which keeps its digits in
+    single precision where a cosine test would not."""
+    disks = world.get("sun_disks", [])
+    if not isinstance(disks, list):
+        raise DataError("world.sun_disks: expected a list")
+    if not disks:
+        return None
+    direction = tree.nodes.new("ShaderNodeTexCoord").outputs["Generated"]
+    total = node(tree, "ShaderNodeCombineXYZ")
+    for k, v in zip("XYZ", rgb(world.get("background"), "world.background")):
+        total.inputs[k].default_value = v
+    total = total.outputs[0]
+    for i, d in enumerate(disks):
+        what = "world.sun_disks[%d]" % i
+        if not isinstance(d, dict):
+            raise DataError("%s: expected an object" % what)
+        dist = tree.nodes.new("ShaderNodeVectorMath")
+        dist.operation = "DISTANCE"
+        tree.links.new(direction, dist.inputs[0])
+        dist.inputs[1].default_value = numbers(d.get("direction"), 3, what + ".direction")
+        inside = tree.nodes.new("ShaderNodeMath")
+        inside.operation = "LESS_THAN"
+        tree.links.new(dist.outputs["Value"], inside.inputs[0])
+        inside.inputs[1].default_value = numbers([d.get("chord")], 1, what + ".chord")[0]
+        scale = tree.nodes.new("ShaderNodeVectorMath")
+        scale.operation = "SCALE"
+        scale.inputs[0].default_value = numbers(d.get("radiance"), 3, what + ".radiance")
+        tree.links.new(inside.outputs[0], scale.inputs["Scale"])
+        add = tree.nodes.new("ShaderNodeVectorMath")
+        add.operation = "ADD"
+        tree.links.new(total, add.inputs[0])
+        tree.links.new(scale.outputs["Vector"], add.inputs[1])
+        total = add.outputs["Vector"]
+    return total
+
+
 def seen_by_traced_rays(tree):
     """A factor that is 1 for camera, glossy and transmission rays and 0 for
     diffuse and volume-scatter rays: emission, the ambient term and the
@@ -555,6 +596,9 @@ def build_into(scene, collection, data, base_dir, engine):
     wout = wt.nodes.new("ShaderNodeOutputWorld")
     bg = node(wt, "ShaderNodeBackground",
               Color=rgb(data.get("world", {}).get("background"), "world.background"), Strength=1.0)
+    disks = sun_disks(wt, data.get("world", {}))
+    if disks:
+        wt.links.new(disks, bg.inputs["Color"])
     black = node(wt, "ShaderNodeBackground", Color=(0, 0, 0, 1), Strength=0.0)
     wmix = wt.nodes.new("ShaderNodeMixShader")
     wt.links.new(seen_by_traced_rays(wt), wmix.inputs["Fac"])
