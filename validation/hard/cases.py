@@ -267,6 +267,11 @@ def _handed(name):
     return build
 
 
+def _far_moved(w, h):
+    # 5e7 times the bounds' half diagonal, sqrt(12).
+    return moved(camera_at(5e7 * math.sqrt(12.0))(w, h), (1e7, -1e7, 1e7))
+
+
 def _pixel(w, h, n=1):
     # In the base scene the centre ray lies in the plane x = 0 through the
     # light that touches the sphere: it grazes the edge of the sphere's
@@ -319,6 +324,9 @@ CASES = [
     Case("camera_5000", "the base scene seen from 5000 units away at 0.043 degrees: "
          "camera_500's image but for the perspective (0.35% in the reference)",
          camera_at(5000.0), invariance=(("distance", "camera_500"),)),
+    Case("camera_5e7_radii", "the base scene seen from 5e7 scene radii (1.7e8 units, "
+         "1.6e-6 degrees) and moved 1e7 from the origin (issue 12, part 5): camera_500's "
+         "image but for the perspective", _far_moved),
     Case("murky_peak", "the murky phase function's forward peak: a spot shines at the camera",
          _murky, mask_lights=True),
     Case("grazing_directional", "a directional light travelling 1.1 degrees off the "
