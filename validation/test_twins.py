@@ -53,6 +53,11 @@ class TwinsTest(unittest.TestCase):
         for path in sorted(SCENES.glob("*.json")):
             data = json.loads(path.read_text())
             made = make_twin(path.stem, data)
+            if data.get("medium", {}).get("type") == "atmosphere":
+                # Its phase is the Rayleigh and Mie mixture, not a key the
+                # twin replaces (scenes/README.md): no twin yet.
+                self.assertIsNone(made, path.name)
+                continue
             phong = [n for n, m in data["materials"].items() if "specular" in m]
             if "medium" not in data and not phong:
                 self.assertIsNone(made, path.name)
