@@ -186,6 +186,52 @@ def sun_mie_table(elevations=(2, 5, 10)):
     return "\n".join(lines) + "\n"
 
 
+def _ray_length(elevation, r_ground=6360.0, top=60.0):
+    s = math.sin(math.radians(elevation))
+    return -r_ground * s + math.sqrt((r_ground * s) ** 2 + top * (2 * r_ground + top))
+
+
+def midpoint_bias_table(elevations=(1.0, 90.0)):
+    """Blender's view-ray quadrature (32 midpoint steps to the top of the
+    atmosphere) adds a step's whole optical depth before it scatters at
+    the step's middle, so each sample is dimmed by exp(-sigma_t d / 2) too
+    much, d the step; near the ground, with Blender's constants in RGB,
+    that factor's inverse is what ours / Blender would be if the first
+    step gave all the light (an upper bound of the bias)."""
+    c = CONSTANTS["blender_rgb"]
+    sig = [r + ms + ma for r, ms, ma in zip(c["rayleigh"]["sigma_s"], c["mie"]["sigma_s"],
+                                            c["mie"]["sigma_a"])]
+    lines = ["| view elevation | step (km) | exp(sigma_t step / 2) at the ground, R / G / B |",
+             "|---|---|---|"]
+    for e in elevations:
+        step = _ray_length(e) / 32.0
+        lines.append("| %g | %.2f | %s |" % (e, step, " / ".join(
+            "%.2f" % math.exp(v * step / 2.0) for v in sig)))
+    return "\n".join(lines) + "\n"
+
+
+def sun_ozone_table(elevations=(2, 5, 10, 20, 40, 60)):
+    """Blender's sun disk leaves ozone out of its transmittance; ours keeps
+    it. The ozone transmittance along the sun's path (Bruneton's ozone,
+    Simpson's rule over the tent) is then what ours / Blender should be on
+    the disk with Blender's constants."""
+    o = CONSTANTS["blender_rgb"]["ozone"]
+    lines = ["| sun elevation | ozone transmittance to the sun, R / G / B |", "|---|---|"]
+    for e in elevations:
+        s = math.sin(math.radians(e))
+        t_end, n, acc = _ray_length(e), 20000, 0.0
+        h = t_end / n
+        for i in range(n + 1):
+            t = i * h
+            alt = math.sqrt(6360.0 ** 2 + t * t + 2 * 6360.0 * t * s) - 6360.0
+            tent = max(0.0, 1.0 - abs(alt - o["center_height"]) / (o["width"] / 2.0))
+            acc += (1 if i in (0, n) else 4 if i % 2 else 2) * tent
+        area = acc * h / 3.0
+        lines.append("| %g | %s |" % (e, " / ".join("%.3f" % math.exp(-a * area)
+                                                      for a in o["sigma_a"])))
+    return "\n".join(lines) + "\n"
+
+
 def depth_table():
     lines = ["| vertical optical depth (R / G / B) | Bruneton 2017 | Blender 3.4 at 680/550/440 nm |",
              "|---|---|---|"]
@@ -420,7 +466,8 @@ def main(argv=None):
         if res["refused"]:
             print("nishita: our reference is skipped: %s" % res["refused"])
             break
-    table = depth_table() + "\n" + sun_mie_table() + "\n" + markdown(res)
+    table = (depth_table() + "\n" + sun_mie_table() + "\n" + midpoint_bias_table() + "\n"
+             + sun_ozone_table() + "\n" + markdown(res))
     print(table)
     if args.markdown:
         Path(args.markdown).write_text(table)
