@@ -227,6 +227,29 @@ sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
   return sh_scale(m->sigma_t, fog_density(m, y));
 }
 
+sh_vec3 sh_medium_majorant_box(const sh_medium *m, sh_vec3 lo, sh_vec3 hi) {
+  if (!m->present || lo.x > m->bmax.x || lo.y > m->bmax.y || lo.z > m->bmax.z ||
+      hi.x < m->bmin.x || hi.y < m->bmin.y || hi.z < m->bmin.z)
+    return sh_v3s(0.0);
+  if (m->type == SH_MEDIUM_ATMOSPHERE) {
+    /* Over the heights the box spans: from its point nearest the centre to
+     * its corner farthest from it, a span whose ends are the least and the
+     * largest height (sh_atmosphere_majorant takes both from the ends and
+     * the point nearest the centre). */
+    sh_vec3 c = m->atmo.center;
+    sh_vec3 near = sh_vmin(sh_vmax(c, lo), hi), far;
+    far.x = c.x - lo.x > hi.x - c.x ? lo.x : hi.x;
+    far.y = c.y - lo.y > hi.y - c.y ? lo.y : hi.y;
+    far.z = c.z - lo.z > hi.z - c.z ? lo.z : hi.z;
+    double len = sh_length(sh_sub(far, near));
+    if (!(len > 0)) return sh_atmosphere_majorant(&m->atmo, near, sh_v3(0, 1, 0), 0, 0);
+    return sh_atmosphere_majorant(&m->atmo, near, sh_scale(sh_sub(far, near), 1.0 / len),
+                                  0.0, len);
+  }
+  if (m->type != SH_MEDIUM_HEIGHT_FOG) return m->sigma_t;
+  return sh_scale(m->sigma_t, fog_density(m, fmax(lo.y, m->bmin.y)));
+}
+
 /* Height fog: the t in [a, inf) at which the density integral from a
  * reaches w (>= 0), along a unit d; INFINITY if it never does (a ray going
  * up holds at most rho(y_a) H / d.y). */
@@ -313,8 +336,8 @@ static void refusal_at(const sh_scene *scene, int line, int column,
   snprintf(err->path, sizeof err->path, "%s", path);
 }
 
-sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
-                                        sh_error *err) {
+sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
+                                  unsigned kinds, sh_error *err) {
   const sh_medium *m = &scene->medium;
   if (m->present && m->phase.type == SH_PHASE_CORNETTE_SHANKS) {
     sh_error_set(err, SH_ERR_SCENE,
@@ -325,12 +348,25 @@ sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
     refusal_at(scene, m->phase_line, m->phase_column, "medium.phase.type", err);
     return SH_ERR_SCENE;
   }
-  if (!m->present || m->type == SH_MEDIUM_HOMOGENEOUS) return SH_OK;
+  if (!m->present || (kinds & SH_MEDIUM_KIND(m->type))) return SH_OK;
+  /* The kinds it renders, as the format spells them. */
+  char names[128] = "";
+  size_t len = 0;
+  for (int t = SH_MEDIUM_HOMOGENEOUS; t <= SH_MEDIUM_ATMOSPHERE; t++)
+    if (kinds & SH_MEDIUM_KIND(t) && len < sizeof names)
+      len += (size_t)snprintf(names + len, sizeof names - len, "%s%s",
+                              len ? " and " : "", sh_medium_type_name((sh_medium_type)t));
   sh_error_set(err, SH_ERR_SCENE,
-               "%s renders homogeneous media only, not a medium of type '%s'; "
+               "%s renders %s media only, not a medium of type '%s'; "
                "lmm_tracer renders it (docs/scene-format.md, \"Non-uniform "
                "media\")",
-               who, sh_medium_type_name(m->type));
+               who, names, sh_medium_type_name(m->type));
   refusal_at(scene, m->line, m->column, "medium.type", err);
   return SH_ERR_SCENE;
+}
+
+sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
+                                        sh_error *err) {
+  return sh_medium_require_kinds(scene, who, SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS),
+                                 err);
 }

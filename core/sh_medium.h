@@ -122,6 +122,13 @@ int sh_medium_ground_blocks(const sh_medium *m, sh_vec3 x, sh_vec3 w,
 sh_vec3 sh_medium_majorant(const sh_medium *m, sh_vec3 o, sh_vec3 d, double t0,
                            double t1);
 
+/* A majorant of sigma_t over the part of the box [lo, hi] inside the
+ * region: sigma_t nowhere exceeds it there. Exact (the maximum) for
+ * homogeneous media and height fog (at the part's lowest height); for an
+ * atmosphere sh_atmosphere_majorant over the heights the box spans. 0
+ * without a medium or where the box misses the region's bounding box. */
+sh_vec3 sh_medium_majorant_box(const sh_medium *m, sh_vec3 lo, sh_vec3 hi);
+
 /* Distance sampling along the span o + t d, t in [a, b] (d unit, inside
  * the region), by the transmittance of the mean channel: density
  * proportional to k(t) exp(-tau_k(a, t)), k the mean of sigma_t's channels
@@ -142,6 +149,13 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
  * of another kind than homogeneous; SH_OK otherwise. */
 sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
                                         sh_error *err);
+
+/* The same for a tool that renders the kinds in `kinds`, a mask of
+ * SH_MEDIUM_KIND(type) bits (the refusal names them), and the format's
+ * first five phase functions. */
+#define SH_MEDIUM_KIND(type) (1u << (unsigned)(type))
+sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
+                                  unsigned kinds, sh_error *err);
 
 /* The name of a medium type as the scene format spells it. */
 const char *sh_medium_type_name(sh_medium_type type);

@@ -3,9 +3,13 @@
  * Henyey-Greenstein at several g, Nishita hazy and murky, Rayleigh),
  * spot_profile() against sh_spot_profile (hard and smooth edges, the
  * exponent classes 0, 1 and other, narrow cones down to 0.005 degrees;
- * the shader takes the angle as its versine 1 - cos), and box_clip() against sh_box_clip
+ * the shader takes the angle as its versine 1 - cos), box_clip() against sh_box_clip
  * (rays from inside and outside, axis-parallel ones, bounded and unbounded
- * intervals). Each runs in both kinds of program (baked and live).
+ * intervals), and medium.glsl's optical_depth() and sigma_s_at() against
+ * sh_medium_optical_depth and sh_medium_sigma_s_at, for a homogeneous
+ * medium and height fog (segments from inside and outside the box, level
+ * and nearly level ones among them, where the closed form takes its
+ * series). Each runs in both kinds of program (baked and live).
  *
  * A tiny fragment shader (TWIN below) calls the function with inputs it
  * fetches from float textures, one input per pixel, and writes the result
@@ -20,8 +24,12 @@
  * may evaluate (vo - v) / w as vo / w - v / w (v the versine), whose
  * cancellation at the cone's edge costs about 1e-6 absolute (measured:
  * 7e-5 relative at a profile of 1e-4); for the ray's interval
- * relative to max(|t|, the box's size). The worst difference of each
- * function is printed. */
+ * relative to max(|t|, the box's size); for optical depth relative to
+ * max(|C|, 1e-2 * the largest C value), as the clipped interval's rounding
+ * (relative to the box's size, above) carries into a short chord's
+ * optical depth (measured: 1.5e-5 relative to a chord of 1e-3 of the
+ * largest); for sigma_s at a point relative to max(|C|, 1e-4 * the
+ * largest). The worst difference of each function is printed. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,7 +48,8 @@
 #define TOL 1e-5
 
 /* TWIN 0: phase(in0.x); 1: spot_profile(in0.x), in0.x a versine; 2: box_clip(in0.xyz,
- * in1.xyz, in0.w, in1.w) in .xy. */
+ * in1.xyz, in0.w, in1.w) in .xy; 3: optical_depth(in0.xyz, in1.xyz) in .xyz;
+ * 4: sigma_s_at(in0.xyz) in .xyz. */
 static const gs__glsl TWIN = {
     "twin.frag",
     "layout(binding = GS_UNIT_FREE) uniform sampler2D u_in0;\n"
@@ -53,8 +62,12 @@ static const gs__glsl TWIN = {
     "  o_color = vec4(phase(a.x), 0.0, 0.0, 1.0);\n"
     "#elif TWIN == 1\n"
     "  o_color = vec4(spot_profile(a.x), 0.0, 0.0, 1.0);\n"
-    "#else\n"
+    "#elif TWIN == 2\n"
     "  o_color = vec4(box_clip(a.xyz, b.xyz, a.w, b.w), 0.0, 1.0);\n"
+    "#elif TWIN == 3\n"
+    "  o_color = vec4(optical_depth(a.xyz, b.xyz), 1.0);\n"
+    "#else\n"
+    "  o_color = vec4(sigma_s_at(a.xyz), 1.0);\n"
     "#endif\n"
     "}\n"};
 
@@ -100,17 +113,18 @@ static int run(twins *t, int which, int bake, const float *in0, const float *in1
   return gs__gl_check("reading the twin's image", &err) == SH_OK;
 }
 
-/* Compares out[4 i] with want[i] (both runs), printing the worst
+/* Compares out[4 i + channel] with want[i] (both runs), printing the worst
  * difference. */
-static void compare(const char *what, const float *got_baked, const float *got_live,
-                    const double *want, const float *in0, double floor) {
+static void compare_channel(const char *what, const float *got_baked, const float *got_live,
+                            const double *want, const float *in0, double floor,
+                            int channel) {
   double top = 0, worst = 0;
   int at = 0, live = 0;
   for (int i = 0; i < N; i++) top = fmax(top, fabs(want[i]));
   for (int k = 0; k < 2; k++) {
     const float *got = k ? got_live : got_baked;
     for (int i = 0; i < N; i++) {
-      double e = fabs(got[4 * i] - want[i]) / fmax(fabs(want[i]), floor * top);
+      double e = fabs(got[4 * i + channel] - want[i]) / fmax(fabs(want[i]), floor * top);
       if (!(e <= worst)) worst = e, at = i, live = k;
     }
   }
@@ -118,6 +132,11 @@ static void compare(const char *what, const float *got_baked, const float *got_l
   snprintf(msg, sizeof msg, "%s: worst relative difference %.2g (at input %.9g, %s) <= %g",
            what, worst, in0[4 * at], live ? "live" : "baked", TOL);
   tu_check(worst <= TOL, msg);
+}
+
+static void compare(const char *what, const float *got_baked, const float *got_live,
+                    const double *want, const float *in0, double floor) {
+  compare_channel(what, got_baked, got_live, want, in0, floor, 0);
 }
 
 static float in0[4 * N], in1[4 * N], outb[4 * N], outl[4 * N];
@@ -242,6 +261,58 @@ static void test_box(twins *t) {
   tu_check(worst <= TOL, msg);
 }
 
+/* optical_depth() and sigma_s_at() of a homogeneous medium and of height
+ * fog, against sh_medium_optical_depth and sh_medium_sigma_s_at. */
+static void test_medium(twins *t) {
+  sh_medium *m = &t->scene->medium;
+  m->bmin = sh_v3(-1, -0.5, -2);
+  m->bmax = sh_v3(1.5, 2, 0.75);
+  /* The parameters as the floats the shader sees. */
+  m->sigma_s = sh_v3(0.3f, 0.45f, 0.6f);
+  m->sigma_t = sh_v3(0.35f, 0.5f, 0.7f);
+  m->base_height = 0.25f;
+  m->scale_height = 1.0 / (double)(float)(1.0 / 0.7);
+  unsigned s = 777;
+  for (int i = 0; i < N; i++) {
+    float *a = &in0[4 * i], *b = &in1[4 * i];
+    for (int c = 0; c < 3; c++) {
+      a[c] = (float)(2.5 * uniform(&s));
+      b[c] = (float)(2.5 * uniform(&s));
+    }
+    if (i % 5 == 0) b[1] = a[1];                      /* level */
+    if (i % 5 == 1) b[1] = a[1] + (float)(1e-3 * uniform(&s)); /* nearly */
+  }
+  static const struct { sh_medium_type type; const char *name; } kinds[] = {
+      {SH_MEDIUM_HOMOGENEOUS, "homogeneous"}, {SH_MEDIUM_HEIGHT_FOG, "height fog"}};
+  static double want_s[N];
+  for (size_t k = 0; k < 2; k++) {
+    m->type = kinds[k].type;
+    for (int c = 0; c < 3; c++) {
+      int inside = 0;
+      for (int i = 0; i < N; i++) {
+        const float *a = &in0[4 * i], *b = &in1[4 * i];
+        sh_vec3 pa = sh_v3(a[0], a[1], a[2]), pb = sh_v3(b[0], b[1], b[2]);
+        want[i] = sh_vget(sh_medium_optical_depth(m, pa, pb), c);
+        inside += want[i] > 0;
+        want_s[i] = sh_vget(sh_medium_sigma_s_at(m, pa), c);
+      }
+      char what[80];
+      snprintf(what, sizeof what, "optical depth, %s, channel %d (%d of %d cross the box)",
+               kinds[k].name, c, inside, N);
+      if (run(t, 3, 1, in0, in1, outb) && run(t, 3, 0, in0, in1, outl))
+        compare_channel(what, outb, outl, want, in0, 1e-2, c);
+      else
+        tu_check(0, what);
+      snprintf(what, sizeof what, "sigma_s at a point, %s, channel %d", kinds[k].name, c);
+      if (run(t, 4, 1, in0, in1, outb) && run(t, 4, 0, in0, in1, outl))
+        compare_channel(what, outb, outl, want_s, in0, 1e-4, c);
+      else
+        tu_check(0, what);
+    }
+  }
+  m->type = SH_MEDIUM_HOMOGENEOUS;
+}
+
 int main(void) {
   twins t = {0};
   t.scene = tu_scene(
@@ -269,6 +340,7 @@ int main(void) {
   test_phase(&t);
   test_spot(&t);
   test_box(&t);
+  test_medium(&t);
   glDeleteTextures(2, t.in);
   gs__target_free(&t.target);
   gs__programs_free(&t.progs);

@@ -8,7 +8,7 @@ typedef struct gs__glsl {
   const char *text;
 } gs__glsl;
 
-extern const gs__glsl gs__glsl_common_glsl, gs__glsl_gs_shared_h;
+extern const gs__glsl gs__glsl_common_glsl, gs__glsl_gs_shared_h, gs__glsl_medium_glsl;
 extern const gs__glsl gs__glsl_shadow_vert, gs__glsl_shadow_frag;
 extern const gs__glsl gs__glsl_surface_vert, gs__glsl_surface_frag;
 extern const gs__glsl gs__glsl_screen_vert, gs__glsl_background_frag;

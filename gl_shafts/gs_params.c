@@ -2,6 +2,7 @@
 
 #include <stdio.h>
 
+#include "gs_medium.h"
 #include "sh_medium.h"
 
 /* The variant's switches. Live programs (not baked) choose the spot
@@ -50,9 +51,10 @@ static void defines(gs__params *p, const sh_scene *scene,
            "#define LIGHT_TYPE %d\n#define HAS_MAP %d\n#define SHADOW %d\n"
            "#define CONE_CLIP %d\n#define PHASE %d\n#define GREY_SIGMA %d\n"
            "#define SPOT_SMOOTH %d\n#define SPOT_EXPONENT %d\n"
-           "#define LIGHT_INSIDE %d\n",
+           "#define LIGHT_INSIDE %d\n#define MEDIUM %d\n",
            type, l ? l->has_map : 0, ls ? (int)ls->shadow : GS_SHADOW_NONE,
-           ls ? ls->cone_clip : 0, phase, grey, smooth, expo, inside);
+           ls ? ls->cone_clip : 0, phase, grey, smooth, expo, inside,
+           gs__medium_kind(m));
   gs__params_text(p, buf);
   if (extra) gs__params_text(p, extra);
 }
@@ -81,12 +83,7 @@ gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
   gs__param_2f(p, "u_frag0", view->win.x0,
                scene->camera.height - view->win.y1);
   const sh_medium *m = &scene->medium;
-  int on = m->present;
-  gs__param_v3(p, "u_sigma_s", on ? m->sigma_s : sh_v3s(0));
-  gs__param_v3(p, "u_sigma_t", on ? m->sigma_t : sh_v3s(0));
-  gs__param_v3(p, "u_bmin", on ? gs__anchored(view, m->bmin) : sh_v3s(0));
-  gs__param_v3(p, "u_bmax", on ? gs__anchored(view, m->bmax) : sh_v3s(0));
-  gs__param_f(p, "u_g", on ? m->phase.g : 0.0);
+  gs__medium_params(p, view, m);
   /* Without a light, zeros: common.glsl's functions name these. */
   static const sh_light none;
   static const gs__light_setup no_setup = {.light = &none};

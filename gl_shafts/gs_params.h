@@ -22,12 +22,12 @@ typedef struct gs__frame {
 /* Starts the frame's parameter block for a draw with light ls (NULL: no
  * light):
  * resets it, then appends the variant's #define lines (LIGHT_TYPE, HAS_MAP,
- * SHADOW, CONE_CLIP, PHASE, GREY_SIGMA, SPOT_SMOOTH, SPOT_EXPONENT and
- * LIGHT_INSIDE; live programs take SPOT_SMOOTH 2, which holds for any
+ * SHADOW, CONE_CLIP, PHASE, GREY_SIGMA, SPOT_SMOOTH, SPOT_EXPONENT,
+ * LIGHT_INSIDE and MEDIUM; live programs take SPOT_SMOOTH 2, which holds for any
  * cone), `extra` lines, and the
  * camera's, the medium's and the
- * light's parameters (u_org ... u_g, u_lpos ... u_shadow_near). Without a
- * medium its coefficients are 0. */
+ * light's parameters (u_org ..., the medium's of gs_medium.h, u_lpos ...
+ * u_shadow_near). Without a medium its coefficients are 0. */
 gs__params *gs__params_begin(const gs__frame *fr, const gs__light_setup *ls,
                              const char *extra);
 

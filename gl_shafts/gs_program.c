@@ -8,21 +8,18 @@
 
 #include "sh_array.h"
 
-int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
-                             GLint *lens, char *line_after, size_t size, const char **bad) {
-  int n = 0;
-#define ADD(s, l) (parts[n] = (s), lens[n++] = (GLint)(l))
-  ADD("#version 450 core\n", -1);
-  ADD(gs__glsl_gs_shared_h.text, -1);
-  ADD(defines, -1);
-  ADD("\n#line 1\n", -1);
-  ADD(gs__glsl_common_glsl.text, -1);
-  ADD("\n#line 1\n", -1);
-  const char *t = src->text, *inc = strstr(t, "#include \"");
+/* Adds the parts of text to parts[*n...]: text with its `#include "NAME"`
+ * line (one at most, at the start of a line) replaced by the embedded file
+ * NAME and the #line that follows it (written to line_after, size bytes).
+ * Returns 0 with *bad at the include line if NAME is unknown, else 1. */
+static int add_with_include(const char *t, const char **parts, GLint *lens, int *n,
+                            char *line_after, size_t size, const char **bad) {
+#define ADD(s, l) (parts[*n] = (s), lens[(*n)++] = (GLint)(l))
+  const char *inc = strstr(t, "#include \"");
   while (inc && inc != t && inc[-1] != '\n') inc = strstr(inc + 1, "#include \"");
   if (!inc) {
     ADD(t, -1);
-    return n;
+    return 1;
   }
   const char *name = inc + strlen("#include \""), *quote = strchr(name, '"');
   const char *eol = strchr(inc, '\n');
@@ -43,6 +40,23 @@ int gs__program_source_parts(const gs__glsl *src, const char *defines, const cha
   ADD(line_after, -1);
   ADD(eol ? eol + 1 : "", -1);
 #undef ADD
+  return 1;
+}
+
+int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
+                             GLint *lens, char *line_after, size_t size, const char **bad) {
+  int n = 0;
+  parts[n] = "#version 450 core\n", lens[n++] = -1;
+  parts[n] = gs__glsl_gs_shared_h.text, lens[n++] = -1;
+  parts[n] = defines, lens[n++] = -1;
+  parts[n] = "\n#line 1\n", lens[n++] = -1;
+  /* Half of line_after for each file's #line. */
+  size_t half = size / 2;
+  if (!add_with_include(gs__glsl_common_glsl.text, parts, lens, &n, line_after, half, bad))
+    return 0;
+  parts[n] = "\n#line 1\n", lens[n++] = -1;
+  if (!add_with_include(src->text, parts, lens, &n, line_after + half, size - half, bad))
+    return 0;
   return n;
 }
 
@@ -66,7 +80,7 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
                          GLuint *out, sh_error *err) {
   const char *parts[GS__SOURCE_PARTS_MAX], *bad = NULL;
   GLint lens[GS__SOURCE_PARTS_MAX];
-  char line_after[32];
+  char line_after[64];
   int nparts = gs__program_source_parts(src, defines, parts, lens, line_after,
                                         sizeof line_after, &bad);
   if (!nparts) {

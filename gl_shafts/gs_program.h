@@ -27,24 +27,25 @@ typedef struct gs__programs {
 
 /* The program of vertex shader vs and fragment shader fs, each compiled as
  * "#version 450 core", gs_shared.h (the numbers C and GLSL share),
- * `defines`, common.glsl, then the stage's source, in
- * which a line `#include "NAME"` (one at most, at the start of a line)
- * stands for the embedded file NAME (plane.glsl, shared by the two plane
- * shaders; GLSL has no #include of its own);
- * built on first use. A compile or link failure is SH_ERR_DEVICE with the
- * shader's name and the GL info log. */
+ * `defines`, common.glsl, then the stage's source. In common.glsl and in
+ * the stage's source a line `#include "NAME"` (one at most in each, at the
+ * start of a line) stands for the embedded file NAME (medium.glsl in
+ * common.glsl; plane.glsl, shared by the two plane shaders; GLSL has no
+ * #include of its own); built on first use. A compile or link failure is
+ * SH_ERR_DEVICE with the shader's name and the GL info log. */
 sh_status gs__program_get(gs__programs *cache, const gs__glsl *vs,
                           const gs__glsl *fs, const char *defines,
                           GLuint *out, sh_error *err);
 
 /* The source parts a stage is compiled from, in glShaderSource's order
  * (parts and lens: room for GS__SOURCE_PARTS_MAX; lens -1 where a part is
- * NUL-terminated): the version, gs_shared.h, the defines, common.glsl and the stage's file, whose
- * `#include "NAME"` line (one at most) is replaced by the embedded file
- * NAME (line_after, size bytes, holds the #line that follows it). Returns
- * the number of parts, or 0 with *bad set to the include line if NAME is
+ * NUL-terminated): the version, gs_shared.h, the defines, common.glsl and
+ * the stage's file, each of the last two with its `#include "NAME"` line
+ * (one at most) replaced by the embedded file NAME (line_after, size bytes,
+ * at least 64, holds the #line directives that follow them). Returns the
+ * number of parts, or 0 with *bad set to the include line if NAME is
  * unknown. The program cache on disk keys on the same parts. */
-#define GS__SOURCE_PARTS_MAX 10
+#define GS__SOURCE_PARTS_MAX 14
 int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
                              GLint *lens, char *line_after, size_t size, const char **bad);
 

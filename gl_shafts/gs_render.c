@@ -11,6 +11,7 @@
 #include "gs_geometry.h"
 #include "gs_gl.h"
 #include "gs_lattice.h"
+#include "gs_medium.h"
 #include "gs_lightvol.h"
 #include "gs_named.h"
 #include "gs_program.h"
@@ -180,7 +181,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
   if (!opt) opt = &defaults;
   if ((st = gs_options_check(opt, err)) != SH_OK ||
       (st = sh_crop_check(&opt->crop, &scene->camera, err)) != SH_OK ||
-      (st = sh_medium_require_homogeneous(scene, "gl_shafts", err)) != SH_OK)
+      (st = gs__medium_check(scene, err)) != SH_OK)
     return st;
   if (scene->nlights > GS_MAX_LIGHTS) {
     st = sh_error_set(err, SH_ERR_SCENE,
@@ -273,7 +274,7 @@ sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
                         "the scene's lights changed in number (%d, was %d): "
                         "make a new renderer",
                         r->scene->nlights, r->nlights);
-  sh_status st = sh_medium_require_homogeneous(r->scene, "gl_shafts", err);
+  sh_status st = gs__medium_check(r->scene, err);
   if (st != SH_OK) return st;
   st = gs__context_make_current(r->ctx, err);
   if (st != SH_OK) return st;

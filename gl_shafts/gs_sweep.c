@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gs_params.h"
+#include "gs_medium.h"
 #include "sh_medium.h"
 
 /* The phase function's forward peak: the angle (radians) at which it has
@@ -167,9 +168,10 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
 
   /* Optically thick slabs (optical depth change above GS__SUB_TAU along a
    * ray's part, whose length is at most the slab's depth times the longest
-   * |d|) are sampled by optical depth too. */
+   * |d|, at the largest sigma_t in the lit volume) are sampled by optical
+   * depth too. */
   const sh_medium *med = &job->frame->scene->medium;
-  double smax = sh_max3(med->sigma_t);
+  double smax = gs__medium_sigma_t_max(med, ls->vol);
   const sh_camera_frame *cf = &job->frame->view->frame;
   double dlmax = sqrt(1.0 + cf->tan_half_x * cf->tan_half_x + cf->tan_half_y * cf->tan_half_y);
   double slab = (ls->zmax - ls->zmin) / job->planes * dlmax;

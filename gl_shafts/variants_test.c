@@ -6,7 +6,8 @@
  * structural switches are taken in every combination: the light's kind
  * with the shadow maps it can have (point: none or cube; spot and
  * directional: none or 2D), a light map or none (spot, directional), the
- * spot's cone clipping, live or baked programs, a medium or none. With
+ * spot's cone clipping, live or baked programs, no medium, a homogeneous
+ * one or height fog (the MEDIUM switch). With
  * each combination, the switches that values decide (the phase function's
  * 5 types, grey or coloured sigma_t, the spot's edge and exponent class,
  * the light inside or outside the medium, XI_EXACT, JITTER and TAU_SUB)
@@ -94,11 +95,15 @@ static void build_passes(const gs__frame *fr, const gs__light_setup *ls, int row
         p);
 }
 
-/* Sets the value switches of row `row` on the scene's light and medium. */
+/* Sets the value switches of row `row` on the scene's light and medium
+ * (medium 0: none, 1: homogeneous, 2: height fog). */
 static void set_row(sh_scene *s, int row, int medium) {
   sh_medium *m = &s->medium;
   sh_light *l = &s->lights[0];
-  m->present = medium;
+  m->present = medium > 0;
+  m->type = medium == 2 ? SH_MEDIUM_HEIGHT_FOG : SH_MEDIUM_HOMOGENEOUS;
+  m->base_height = 0.5;
+  m->scale_height = 1.5;
   m->phase.type = (sh_phase_type)(row % 5);
   m->phase.g = m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? 0.3 : 0.0;
   m->sigma_t = row & 1 ? sh_v3(0.2, 0.2, 0.2) : sh_v3(0.2, 0.3, 0.4);
@@ -138,7 +143,7 @@ int main(void) {
       for (int map = 0; map < 2; map++)
         for (int clip = 0; clip < 2; clip++)
           for (int live = 0; live < 2; live++)
-            for (int medium = 0; medium < 2; medium++) {
+            for (int medium = 0; medium < 3; medium++) {
               sh_light_type kind = kinds[k];
               if (kind == SH_LIGHT_POINT && map) continue;
               if (kind != SH_LIGHT_SPOT && clip) continue;

@@ -7,7 +7,7 @@ layout(location = 1) out vec4 o_depth;
 
 void main() {
   vec3 d = view_ray(gl_FragCoord.xy);
-  vec3 tr = atten(medium_len_eye(view_origin(gl_FragCoord.xy), d, BIG));
+  vec3 tr = transmittance(optical_depth_eye(view_origin(gl_FragCoord.xy), d, BIG));
   o_color = vec4((u_background + SUN_DISKS(normalize(d))) * tr,
                  0.0);
   o_depth = vec4(BIG);

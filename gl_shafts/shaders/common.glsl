@@ -20,6 +20,8 @@
 //   TAU_SUB     1 if a slab can be optically thick: sample it by optical
 //               depth (live programs always do, with a rate of 0 when no
 //               slab is thick)
+//   MEDIUM      GS_MEDIUM_HOMOGENEOUS or GS_MEDIUM_HEIGHT_FOG (medium.glsl,
+//               included below, is all that looks at it)
 // Live programs (gs_options.live) switch on the scene's structure and on
 // the value classes above that are costly to choose per fragment and
 // seldom flip (SPOT_EXPONENT, LIGHT_INSIDE, SHADOW 0 for a light without
@@ -79,8 +81,9 @@ const float BIG = 3.0e38;
 //   whole image), u_rc (the window's centre on that plane, 0 for the whole
 //   image), u_ndc_scale (2 / width, 2 / height of the window), u_frag0 (the
 //   window's corner in the whole image's pixels, from the bottom left);
-// medium (0 without one): u_sigma_s, u_sigma_t, the box u_bmin, u_bmax, and
-//   the Henyey-Greenstein u_g;
+// medium (0 without one; gs_medium.c): u_sigma_s, u_sigma_t (at the base
+//   height for height fog), the box u_bmin, u_bmax, the Henyey-Greenstein
+//   u_g, and height fog's u_fog (medium.glsl);
 // light: u_lpos, u_ldir (unit axis or travel direction), u_lpower
 //   (intensity or irradiance), u_spot (1 - cos outer, 1 - cos inner,
 //   exponent, 1 / tan outer), the spot light map's frame u_map_right, u_map_up, a
@@ -137,39 +140,21 @@ vec2 box_clip(vec3 o, vec3 d, float lo, float hi) {
               min(hi, min(t1.x, min(t1.y, t1.z))));
 }
 
-// Length inside the box of the segment from a to b.
-float medium_len(vec3 a, vec3 b) {
-  vec3 d = b - a;
-  vec2 t = box_clip(a, d, 0.0, 1.0);
-  return max(t.y - t.x, 0.0) * length(d);
-}
-
-// Length inside the box of the ray p + t w, t >= 0, w unit.
-float medium_len_ray(vec3 p, vec3 w) {
-  vec2 t = box_clip(p, w, 0.0, BIG);
-  return max(t.y - t.x, 0.0);
-}
-
-// Length inside the box of the pixel ray o + z d between the eye (z =
-// -u_zref) and z.
-float medium_len_eye(vec3 o, vec3 d, float z) {
-  vec2 t = box_clip(o, d, -u_zref, z);
-  return max(t.y - t.x, 0.0) * length(d);
-}
-
-// Transmittance over a length inside the medium.
-vec3 atten(float len) {
-#if GREY_SIGMA
-  return vec3(exp(-u_sigma_t.x * len));
-#else
-  return exp(-u_sigma_t * len);
-#endif
-}
-
 // Distance from p, inside the box, to the box's boundary along unit w.
 float box_exit(vec3 p, vec3 w) {
   vec3 t = (mix(u_bmin, u_bmax, step(0.0, w)) - p) * safe_inv(w);
   return max(min(t.x, min(t.y, t.z)), 0.0);
+}
+
+// The medium: its region, optical depth, transmittance and coefficients at
+// a point, chosen by MEDIUM (the only code that looks at the medium's kind).
+#include "medium.glsl"
+
+// The optical depth of the pixel ray o + z d between the eye (z = -u_zref)
+// and z.
+vec3 optical_depth_eye(vec3 o, vec3 d, float z) {
+  vec2 t = medium_clip(o, d, -u_zref, z);
+  return t.y > t.x ? optical_depth_span(o, d, length(d), t.x, t.y) : vec3(0.0);
 }
 
 // The normalised phase function at cos(alpha) (sh_phase_eval).
@@ -250,12 +235,12 @@ vec3 light_pattern(vec3 p) {
 vec3 light_incident(vec3 p, out vec3 wi) {
 #if LIGHT_TYPE == GS_LIGHT_DIRECTIONAL
   wi = -u_ldir;
-  return u_lpower * light_pattern(p) * atten(medium_len_ray(p, wi));
+  return u_lpower * light_pattern(p) * transmittance(optical_depth_ray(p, wi));
 #else
   vec3 tol = u_lpos - p;
   float r2 = max(dot(tol, tol), 1e-30);
   wi = tol * inversesqrt(r2);
-  return u_lpower * light_pattern(p) * atten(medium_len(p, u_lpos)) / r2;
+  return u_lpower * light_pattern(p) * transmittance(optical_depth(p, u_lpos)) / r2;
 #endif
 }
 

@@ -20,6 +20,10 @@
 #define GS_PHASE_NISHITA_MURKY 3
 #define GS_PHASE_RAYLEIGH 4
 
+/* MEDIUM: the medium's kind (sh_medium_type; gs_medium.h, medium.glsl). */
+#define GS_MEDIUM_HOMOGENEOUS 0
+#define GS_MEDIUM_HEIGHT_FOG 1
+
 /* SHADOW: the light's shadow map (gs_lightvol.h). */
 #define GS_SHADOW_NONE 0
 #define GS_SHADOW_2D 1

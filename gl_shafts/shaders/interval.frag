@@ -1,8 +1,8 @@
 // Per pixel and light: the view-depth interval [z0, z1] (counted from
 // u_zref, as every depth in GL) of the pixel's ray that the light can reach
-// in the medium (inside the box, the spot's cone or the window's prism, and
-// in front of the surface), and the depth where the ray enters the box (for
-// the transmittance towards the eye).
+// in the medium (inside its region, the spot's cone or the window's prism,
+// and in front of the surface), and the depth where the ray enters the
+// medium's region (where its optical depth from the eye begins).
 layout(binding = GS_UNIT_LINDEPTH) uniform sampler2D u_lindepth;
 layout(location = 0) out vec4 o_interval;
 
@@ -55,8 +55,8 @@ vec2 cone_clip(vec3 o, vec3 d) {
 void main() {
   vec3 d = view_ray(gl_FragCoord.xy), o = view_origin(gl_FragCoord.xy);
   float zs = texelFetch(u_lindepth, ivec2(gl_FragCoord.xy), 0).r;
-  vec2 box = box_clip(o, d, -u_zref, zs);
-  vec2 iv = box;
+  vec2 region = medium_clip(o, d, -u_zref, zs);
+  vec2 iv = region;
 #if LIGHT_TYPE == GS_LIGHT_SPOT && CONE_CLIP
   vec2 c = cone_clip(o, d);
   iv = vec2(max(iv.x, c.x), min(iv.y, c.y));
@@ -65,5 +65,5 @@ void main() {
   iv = clip_unit(iv, dot(u_win_s.xyz, o) + u_win_s.w, dot(u_win_s.xyz, d));
   iv = clip_unit(iv, dot(u_win_t.xyz, o) + u_win_t.w, dot(u_win_t.xyz, d));
 #endif
-  o_interval = vec4(iv, box.x, 0.0);
+  o_interval = vec4(iv, region.x, 0.0);
 }

@@ -2,7 +2,8 @@
 // shaders compute): a part is sampled once at its middle (or a jittered
 // depth), or, with a window, at equal steps of length, one per
 // u_sub_texels texels of the window's pattern that it crosses, and in a
-// dense medium one per optical depth u_sub_tau / 2.
+// dense medium one per optical depth u_sub_tau / 2, and where the medium's
+// density varies as many as its variation asks.
 #include "plane.glsl"
 
 // The integrand but for dt at view depth z, without the visibility:
@@ -11,7 +12,11 @@ vec3 sample_dir(vec3 o, float z, vec3 d, float dl, vec2 ndc, float entry) {
   vec3 p = o + z * d;
 #if XI_EXACT
   vec3 wi = -u_ldir;
-  vec3 v = u_sigma_s * phase(dot(wi, d) / dl) * atten(box_exit(p, wi) + (z - entry) * dl);
+  // Optical depth towards the light (the sun: to the region's boundary) and
+  // from the ray's entry into the region to p.
+  vec3 tau = optical_depth_span(p, wi, 1.0, 0.0, medium_exit(p, wi)) +
+             optical_depth_span(o, d, dl, entry, z);
+  vec3 v = sigma_s_at(p) * phase(dot(wi, d) / dl) * transmittance(tau);
 #else
   vec3 v = xi_lattice(ndc, z);
 #endif
@@ -52,10 +57,11 @@ void main() {
   vec3 d = ndc_ray(ndc), o = ndc_origin(ndc);
   float dl = length(d);
   float u = jitter_offset();
-#if HAS_MAP || TAU_SUB
+#if HAS_MAP || TAU_SUB || MEDIUM_VARIES
   // A window's pattern: one sample per u_sub_texels texels of the light map
   // that the part of the ray crosses (at least one per plane); in a dense
-  // medium, one per optical depth u_sub_tau / 2.
+  // medium, one per optical depth u_sub_tau / 2; where the medium varies,
+  // as many as its variation asks (medium.glsl).
   float k = 0.0;
 #if HAS_MAP
   vec2 rate = vec2(dot(u_win_s.xyz, d), dot(u_win_t.xyz, d)) * u_map_size;
@@ -63,6 +69,9 @@ void main() {
 #endif
 #if TAU_SUB
   k = max(k, dl * u_tau_rate);
+#endif
+#if MEDIUM_VARIES
+  k = max(k, dl * medium_variation_rate(d / dl));
 #endif
   int n = int(clamp(ceil((hi - lo) * k), 1.0, 64.0));
   vec3 sum = vec3(0.0);

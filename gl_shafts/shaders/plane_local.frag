@@ -45,13 +45,18 @@ float scatter_sin(float k, float s) {
 vec3 sample_at(float c, float s) {
   float k = g_h * s / c;          // ray length from the foot
   vec3 wi = c * g_e - s * g_dn;   // towards the light
-#if XI_EXACT && LIGHT_INSIDE
-  float light_len = g_h / c; // r: the light is inside the medium's box
-  vec3 v = u_sigma_s * phase(-scatter_sin(k, s)) * atten(light_len + (g_b + k - g_entry));
-#elif XI_EXACT
+#if XI_EXACT
   vec3 p = g_foot + k * g_dn;
-  float light_len = min(box_exit(p, wi), g_h / c);
-  vec3 v = u_sigma_s * phase(-scatter_sin(k, s)) * atten(light_len + (g_b + k - g_entry));
+#if LIGHT_INSIDE
+  float light_len = g_h / c; // r: the light is inside the medium's region
+#else
+  float light_len = min(medium_exit(p, wi), g_h / c);
+#endif
+  // Optical depth towards the light and from the ray's entry into the
+  // region to p.
+  vec3 tau = optical_depth_span(p, wi, 1.0, 0.0, light_len) +
+             optical_depth_span(g_foot, g_dn, 1.0, g_entry - g_b, k);
+  vec3 v = sigma_s_at(p) * phase(-scatter_sin(k, s)) * transmittance(tau);
 #else
   vec3 v = xi_lattice(g_ndc, (g_b + k) / g_dl);
 #endif
@@ -149,12 +154,21 @@ void main() {
   vec2 gb = vec2(sb * g_dr - cb * g_er, sb * g_du - cb * g_eu) / (sb * g_da - cb * g_ea);
   k = max(k, length((gb - ga) * (0.5 * u_spot.w) * u_map_size) * u_inv_sub_texels);
 #endif
-#if TAU_SUB
+#if TAU_SUB || MEDIUM_VARIES
   // In a dense medium also one sample per optical depth u_sub_tau / 2 (the
   // transmittances towards the eye and the light change at most at 2
-  // sigma_t): the largest length step, at the end further from the foot, is
-  // h (1 + tan^2) times the angle step.
-  k = max(k, u_tau_rate * g_h * (1.0 + max(ta * ta, tb * tb)) * dtheta);
+  // sigma_t), and where the medium varies as many as its variation asks
+  // (medium.glsl): the largest length step, at the end further from the
+  // foot, is h (1 + tan^2) times the angle step.
+#if TAU_SUB
+  float rate = u_tau_rate;
+#else
+  float rate = 0.0;
+#endif
+#if MEDIUM_VARIES
+  rate = max(rate, medium_variation_rate(g_dn));
+#endif
+  k = max(k, rate * g_h * (1.0 + max(ta * ta, tb * tb)) * dtheta);
 #endif
   int n = int(clamp(ceil(k), 1.0, 1024.0));
   float step = dtheta / float(n);

@@ -92,6 +92,6 @@ void main() {
       L += f * e * vis;
     }
   }
-  o_color = vec4(L * atten(medium_len_eye(o, d, t)), 0.0);
+  o_color = vec4(L * transmittance(optical_depth_eye(o, d, t)), 0.0);
   o_depth = vec4(t);
 }

@@ -1,0 +1,43 @@
+#include "gs_medium.h"
+
+#include "shaders/gs_shared.h"
+
+#include <math.h>
+
+#include "sh_medium.h"
+
+sh_status gs__medium_check(const sh_scene *scene, sh_error *err) {
+  /* Height fog is drawn by the shaders (medium.glsl) but not accepted
+   * until it is checked against the reference. */
+  return sh_medium_require_kinds(scene, "gl_shafts",
+                                 SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS), err);
+}
+
+int gs__medium_kind(const sh_medium *m) {
+  return m->present && m->type == SH_MEDIUM_HEIGHT_FOG ? GS_MEDIUM_HEIGHT_FOG
+                                                       : GS_MEDIUM_HOMOGENEOUS;
+}
+
+void gs__medium_params(gs__params *p, const gs__view *view, const sh_medium *m) {
+  int on = m->present;
+  gs__param_v3(p, "u_sigma_s", on ? m->sigma_s : sh_v3s(0));
+  gs__param_v3(p, "u_sigma_t", on ? m->sigma_t : sh_v3s(0));
+  gs__param_v3(p, "u_bmin", on ? gs__anchored(view, m->bmin) : sh_v3s(0));
+  gs__param_v3(p, "u_bmax", on ? gs__anchored(view, m->bmax) : sh_v3s(0));
+  gs__param_f(p, "u_g", on ? m->phase.g : 0.0);
+  /* Height fog's base height in the anchored space, and 1 / H. */
+  int fog = gs__medium_kind(m) == GS_MEDIUM_HEIGHT_FOG;
+  gs__param_2f(p, "u_fog", fog ? m->base_height - view->anchor.y : 0.0,
+               fog ? 1.0 / m->scale_height : 0.0);
+}
+
+double gs__medium_sigma_t_max(const sh_medium *m, const gs__poly *vol) {
+  sh_vec3 lo = sh_v3s(INFINITY), hi = sh_v3s(-INFINITY);
+  for (int f = 0; f < vol->nfaces; f++)
+    for (int i = 0; i < vol->face[f].n; i++) {
+      lo = sh_vmin(lo, vol->face[f].v[i]);
+      hi = sh_vmax(hi, vol->face[f].v[i]);
+    }
+  if (!vol->nfaces) return 0.0;
+  return sh_max3(sh_medium_majorant_box(m, lo, hi));
+}
