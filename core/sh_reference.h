@@ -1,10 +1,15 @@
 /* The reference renderer: Whitted ray tracing (direct light with hard
  * shadows through semitransparent surfaces, mirror reflection, refraction
  * weighted by k_t as in formula 2 of Debelov et al. 2008) plus single
- * scattering in the medium (homogeneous or height fog) along every ray
- * segment, seen directly and through reflection and refraction. The medium
- * answers for optical depth, transmittance and the coefficients and phase at
- * each sample (sh_medium.h); the transmittances are exact (closed forms).
+ * scattering in the medium (homogeneous, height fog or atmosphere) along
+ * every ray segment, seen directly and through reflection and refraction.
+ * The medium answers for optical depth, transmittance and the coefficients
+ * and phase at each sample (sh_medium.h); the transmittances are exact
+ * (closed forms) for homogeneous media and height fog, and within 1e-8
+ * relative (Gauss-Legendre panels, sh_atmosphere.h) for an atmosphere. An
+ * atmosphere's ground is an opaque Lambert sphere intersected in double
+ * precision before the scene's surfaces, lit through the air, and it
+ * shadows the air and every surface (the planet's shadow).
  *
  * Every pixel is sampled at its centre. The in-scattering integral is
  * estimated per ray segment and light with `spp` stratified samples:
