@@ -6,15 +6,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-extern const gs__glsl gs__glsl_atmo_base_frag, gs__glsl_atmo_sky_frag,
-    gs__glsl_atmo_space_frag;
+extern const gs__glsl gs__glsl_atmo_layer_frag, gs__glsl_atmo_compose_frag;
 
 static const float FULL_SCREEN[8] = {-1, -1, 1, -1, 1, 1, -1, 1};
 
 sh_status gs__atmo_gl_init(gs__atmo_gl *g, const gs__atmo *a,
                            const gs__atmo_source *src, sh_error *err) {
   g->atmo = *a;
-  g->tex = 0;
+  g->tex = g->lat_tex = g->lat_fbo = 0;
+  g->lat_w = g->lat_h = 0;
   sh_status st = gs__atmo_table_build(&g->table, src, &a->shell, GS__ATMO_TABLE_R,
                                       GS__ATMO_TABLE_MU, err);
   if (st != SH_OK) return st;
@@ -32,7 +32,9 @@ sh_status gs__atmo_gl_init(gs__atmo_gl *g, const gs__atmo *a,
 
 void gs__atmo_gl_free(gs__atmo_gl *g) {
   if (g->tex) glDeleteTextures(1, &g->tex);
-  g->tex = 0;
+  if (g->lat_tex) glDeleteTextures(1, &g->lat_tex);
+  if (g->lat_fbo) glDeleteFramebuffers(1, &g->lat_fbo);
+  g->tex = g->lat_tex = g->lat_fbo = 0;
   gs__atmo_table_free(&g->table);
 }
 
@@ -83,7 +85,8 @@ static eye_frame eye_of(const gs__atmo *a, sh_vec3 eye) {
 }
 
 /* Starts a pass's parameters: the camera's (gs__params_begin) and the
- * atmosphere's, for the sun `l`. */
+ * atmosphere's, for the sun `l` (NULL: none); the caller adds u_depth
+ * (screen.vert's). */
 static gs__params *atmo_params(const gs__atmo_gl *g, const gs__frame *fr,
                                const eye_frame *e, const sh_light *l,
                                const char *extra) {
@@ -107,86 +110,168 @@ static gs__params *atmo_params(const gs__atmo_gl *g, const gs__frame *fr,
   gs__param_v3(p, "u_albedo", a->ground_albedo);
   gs__param_v3(p, "u_background", fr->scene->background);
   gs__param_2f(p, "u_table_size", g->table.n_mu, g->table.n_r);
-  sh_vec3 to_sun = sh_normalize(sh_neg(l->direction));
+  /* Without a sun (the background alone) any direction, no light. */
+  sh_vec3 to_sun = l ? sh_normalize(sh_neg(l->direction)) : sh_v3(0, 1, 0);
   gs__param_v3(p, "u_lsun", to_sun);
-  gs__param_v3(p, "u_esun", l->irradiance);
-  gs__param_f(p, "u_depth", 0.0);
+  gs__param_v3(p, "u_esun", l ? l->irradiance : sh_v3s(0.0));
+  /* The sun's disk (docs/scene-format.md, "The sun's disk"): the squared
+   * chord |d - s|^2 at its edge, 4 sin^2(half angle / 2) = Omega / pi
+   * (-1: no disk), and its radiance. */
+  double omega = l ? l->disk_solid_angle : 0.0;
+  gs__param_f(p, "u_disk_chord2", omega > 0 ? omega / SH_PI : -1.0);
+  gs__param_v3(p, "u_disk_radiance",
+               omega > 0 ? sh_scale(l->irradiance, 1.0 / omega) : sh_v3s(0.0));
   return p;
 }
 
-sh_status gs__atmo_render(const gs__atmo_gl *g, const gs__frame *fr,
-                          const gs__target *t, int planes, int spheres,
-                          gs__atmo_counts *counts, sh_error *err) {
+/* The lattice's texture and framebuffer, at the size the image needs. */
+static sh_status lattice_fit(gs__atmo_gl *g, int w, int h, sh_error *err) {
+  if (g->lat_tex && g->lat_w == w && g->lat_h == h) return SH_OK;
+  if (g->lat_fbo) glDeleteFramebuffers(1, &g->lat_fbo);
+  if (g->lat_tex) glDeleteTextures(1, &g->lat_tex);
+  glCreateTextures(GL_TEXTURE_2D, 1, &g->lat_tex);
+  glTextureStorage2D(g->lat_tex, 1, GL_RGBA32F, w, h);
+  glCreateFramebuffers(1, &g->lat_fbo);
+  glNamedFramebufferTexture(g->lat_fbo, GL_COLOR_ATTACHMENT0, g->lat_tex, 0);
+  glNamedFramebufferDrawBuffer(g->lat_fbo, GL_COLOR_ATTACHMENT0);
+  g->lat_w = w;
+  g->lat_h = h;
+  if (glCheckNamedFramebufferStatus(g->lat_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    return sh_error_set(err, SH_ERR_DEVICE,
+                        "the GL driver cannot render into a 32-bit float "
+                        "framebuffer of %dx%d", w, h);
+  return gs__gl_check("creating the sky's lattice", err);
+}
+
+/* Draws the n layers (planes or spheres: their depths or radii in
+ * layer[]) with the bound program prog, u_lat_scale = scale. */
+static void draw_layers(GLuint prog, const gs__target *t, const double *layer, int n,
+                        double scale) {
+  gs__uniform_f(prog, "u_lat_scale", scale);
+  for (int k = 0; k < n; k++) {
+    gs__uniform_2f(prog, "u_layer", layer[k], layer[k + 1]);
+    gs__target_draw_polygon(t, FULL_SCREEN, 4);
+  }
+}
+
+/* One sun's passes (l NULL: the background alone): with a lattice, the
+ * layers drawn on it, then the image composed (what the rays end on, the
+ * lattice interpolated, the pixels it cannot serve integrated over the
+ * layers); without, the image composed of what the rays end on, then the
+ * layers drawn at full resolution. The first sun's compose pass replaces
+ * the image. */
+static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target *t,
+                          const eye_frame *e, const sh_light *l, int first,
+                          const double *layer, int n, int step, sh_error *err) {
+  GLuint layers = 0, prog;
+  sh_status st;
+  gs__params *p;
+  if (!l) step = 1;
+  if (step > 1) {
+    int lw = (t->width + step - 1) / step, lh = (t->height + step - 1) / step;
+    if ((st = lattice_fit(g, lw, lh, err)) != SH_OK) return st;
+    p = atmo_params(g, fr, e, l, "");
+    gs__param_f(p, "u_depth", 0.0);
+    st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
+                         &layers, err);
+    if (st != SH_OK) return st;
+    static const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(g->lat_fbo, GL_COLOR, 0, zero);
+    glBindFramebuffer(GL_FRAMEBUFFER, g->lat_fbo);
+    glViewport(0, 0, lw, lh);
+    glEnable(GL_BLEND);
+    draw_layers(layers, t, layer, n, step);
+    glBindTextureUnit(GS_UNIT_ATMO_LATTICE, g->lat_tex);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+  glViewport(0, 0, t->width, t->height);
+  for (int fix = 0; fix <= (step > 1); fix++) {
+    char defs[80];
+    snprintf(defs, sizeof defs, "#define FIRST %d\n#define LATTICE %d\n#define FIXUP %d\n",
+             first, step > 1, fix);
+    p = atmo_params(g, fr, e, l, defs);
+    gs__param_f(p, "u_depth", fix ? 1.0 : 0.0);
+    st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_compose_frag, p,
+                         &prog, err);
+    if (st != SH_OK) return st;
+    gs__uniform_f(prog, "u_lat_scale", 1.0);
+    gs__uniform_f(prog, "u_lat_step", step);
+    gs__uniform_i(prog, "u_nlayers", n);
+    for (int k = 0; fix && k <= n; k++) {
+      char name[32];
+      snprintf(name, sizeof name, "u_layers[%d]", k);
+      gs__uniform_f(prog, name, layer[k]);
+    }
+    if (first && !fix) glDisable(GL_BLEND);
+    else glEnable(GL_BLEND);
+    /* The compose pass marks the pixels the lattice cannot serve at depth
+     * 1; the fixup pass, drawn at depth 1, runs on them alone. */
+    if (step > 1) {
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(fix ? GL_EQUAL : GL_ALWAYS);
+      glDepthMask(fix ? GL_FALSE : GL_TRUE);
+    }
+    gs__target_draw_polygon(t, FULL_SCREEN, 4);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+  }
+  if (step > 1 || !l) return SH_OK;
+  p = atmo_params(g, fr, e, l, "");
+  gs__param_f(p, "u_depth", 0.0);
+  st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
+                       &layers, err);
+  if (st != SH_OK) return st;
+  glEnable(GL_BLEND);
+  draw_layers(layers, t, layer, n, 1.0);
+  return SH_OK;
+}
+
+sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target *t,
+                          const gs__atmo_settings *set, gs__atmo_counts *counts,
+                          sh_error *err) {
   const gs__atmo *a = &g->atmo;
   const sh_scene *scene = fr->scene;
   eye_frame e = eye_of(a, fr->view->frame.origin);
   int outside = e.re > a->shell.r_top;
+  int n = outside ? set->spheres : set->planes;
+  if (n < 1 || n > GS_ATMO_MAX_LAYERS)
+    return sh_error_set(err, SH_ERR_ARG, "the atmosphere takes 1 to %d %s, not %d",
+                        GS_ATMO_MAX_LAYERS, outside ? "sampling spheres" : "sampling planes", n);
   gs__atmo_counts c = {0, 0, outside};
-  double *depth = malloc((size_t)((planes > spheres ? planes : spheres) + 1) * sizeof *depth);
-  if (!depth) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  double *layer = malloc((size_t)(n + 1) * sizeof *layer);
+  if (!layer) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   if (outside)
-    gs__atmo_sphere_radii(a, spheres, depth);
+    gs__atmo_sphere_radii(a, n, layer);
   else {
     /* The farthest air in view lies no farther than the top seen along
      * the horizon; the first plane at a fiftieth of the smaller scale
      * height (the air's density changes little nearer). */
     double rg = a->shell.r_ground, rt = a->shell.r_top;
     double zmax = sqrt(fmax(e.ce, 0.0)) + sqrt((rt - rg) * (rt + rg));
-    double first = fmin(0.02 * fmin(a->rayleigh_h, a->mie_h) / zmax, 0.5 / planes);
-    gs__atmo_plane_depths(zmax, first, planes, depth);
+    double first = fmin(0.02 * fmin(a->rayleigh_h, a->mie_h) / zmax, 0.5 / n);
+    gs__atmo_plane_depths(zmax, first, n, layer);
   }
-
-  glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
   gs__target_draw_buffers(t, 1);
-  glViewport(0, 0, t->width, t->height);
   glDisable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);
   glBindTextureUnit(GS_UNIT_ATMO, g->tex);
   glBlendFunc(GL_ONE, GL_ONE);
   glBlendEquation(GL_FUNC_ADD);
   sh_status st = SH_OK;
-  int first_sun = 1;
+  int first = 1;
   for (int i = 0; i < scene->nlights && st == SH_OK; i++) {
     const sh_light *l = &scene->lights[i];
     if (l->type != SH_LIGHT_DIRECTIONAL) continue;
-    /* The ground and the background; the first pass replaces the image. */
-    GLuint prog;
-    gs__params *p = atmo_params(g, fr, &e, l, first_sun ? "#define FIRST 1\n"
-                                                        : "#define FIRST 0\n");
-    st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_base_frag,
-                         p, &prog, err);
-    if (st != SH_OK) break;
-    if (first_sun) glDisable(GL_BLEND);
-    else glEnable(GL_BLEND);
-    gs__target_draw_polygon(t, FULL_SCREEN, 4);
-    first_sun = 0;
-    glEnable(GL_BLEND);
-    /* The planes or spheres: one program, the slab or shell a uniform. */
-    p = atmo_params(g, fr, &e, l, "");
-    st = gs__program_use(fr->progs, &gs__glsl_screen_vert,
-                         outside ? &gs__glsl_atmo_space_frag : &gs__glsl_atmo_sky_frag,
-                         p, &prog, err);
-    if (st != SH_OK) break;
-    int n = outside ? spheres : planes;
-    for (int k = 0; k < n; k++) {
-      gs__uniform_2f(prog, outside ? "u_shell" : "u_slab", depth[k], depth[k + 1]);
-      gs__target_draw_polygon(t, FULL_SCREEN, 4);
-    }
+    st = draw_sun(g, fr, t, &e, l, first, layer, n, set->lattice_step, err);
+    first = 0;
     if (outside) c.spheres += n;
     else c.planes += n;
   }
-  if (st == SH_OK && first_sun) {
-    /* No sun: the background through the air alone. */
-    static const sh_light dark = {.type = SH_LIGHT_DIRECTIONAL, .direction = {0, -1, 0}};
-    GLuint prog;
-    gs__params *p = atmo_params(g, fr, &e, &dark, "#define FIRST 1\n");
-    st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_base_frag,
-                         p, &prog, err);
-    glDisable(GL_BLEND);
-    if (st == SH_OK) gs__target_draw_polygon(t, FULL_SCREEN, 4);
-  }
+  /* No sun: the background through the air alone. */
+  if (st == SH_OK && first)
+    st = draw_sun(g, fr, t, &e, NULL, 1, layer, n, 1, err);
   glDisable(GL_BLEND);
-  free(depth);
+  free(layer);
   if (counts) *counts = c;
   if (st != SH_OK) return st;
   return gs__gl_check("drawing the atmosphere", err);

@@ -5,12 +5,15 @@
  * - the eye inside the atmosphere (the sky from the ground): sampling
  *   planes, parallel to the screen, at view depths in geometric progression
  *   from the eye to the farthest air in view, each adding the single
- *   scattering of its slab (atmo_sky.frag);
+ *   scattering of its slab (atmo_layer.frag);
  * - the eye above the top (the planet from space): sampling spheres about
  *   the planet's centre, at radii in equal steps of the Rayleigh density
- *   as the slides space them, each adding its shell (atmo_space.frag);
+ *   as the slides space them, each adding its shell (atmo_layer.frag);
+ * - the layers drawn on a lattice of pixels and interpolated, as the
+ *   slides evaluate the sun's light at lattice points, except across the
+ *   horizon and the limb (atmo_compose.frag);
  * - the ground, an opaque Lambert sphere lit through the air, and the
- *   background through the air (atmo_base.frag).
+ *   background and the sun's disk through the air (atmo_compose.frag).
  * Every pass is drawn in the eye's coordinates from quantities computed in
  * double precision (atmo.glsl), so a planet of radius 6360 km with the eye
  * 1 m above it, or seen from 30 000 km, keeps its precision.
@@ -22,19 +25,35 @@
 #include "gs_atmo_table.h"
 #include "gs_params.h"
 #include "gs_target.h"
+#include "shaders/gs_shared.h"
 
 /* Defaults: the table's size (gs_atmo_table_test measures its error), the
  * planes of the sky and the spheres of space. */
 #define GS__ATMO_TABLE_R 64
 #define GS__ATMO_TABLE_MU 256
-#define GS__ATMO_PLANES 32
-#define GS__ATMO_SPHERES 16
+#define GS__ATMO_PLANES 16
+#define GS__ATMO_SPHERES 10
+#define GS__ATMO_LATTICE 4
 
 typedef struct gs__atmo_gl {
   gs__atmo atmo;
   gs__atmo_table table;
   GLuint tex; /* the table, RGBA32F, n_mu x n_r, linear filtering */
+  GLuint lat_tex, lat_fbo; /* the lattice (RGBA32F), made at first use */
+  int lat_w, lat_h;
 } gs__atmo_gl;
+
+/* How a frame is drawn. */
+typedef struct gs__atmo_settings {
+  int planes;  /* sampling planes, eye inside the atmosphere, 1 to
+                  GS_ATMO_MAX_LAYERS (SH_ERR_ARG otherwise) */
+  int spheres; /* sampling spheres, eye above the top, the same */
+  /* The planes or spheres are drawn on a lattice of one pixel per
+   * lattice_step x lattice_step block and interpolated (atmo_resolve.frag),
+   * except where the horizon or the limb passes between lattice points,
+   * drawn at full resolution; 1: every pixel at full resolution. */
+  int lattice_step;
+} gs__atmo_settings;
 
 /* Builds the table from src (gs__atmo_source_medium for a scene's medium)
  * and uploads it. */
@@ -49,13 +68,12 @@ typedef struct gs__atmo_counts {
 } gs__atmo_counts;
 
 /* Draws the atmosphere seen by fr's camera into t's image (replacing what
- * it held) under the scene's directional lights (the others are not
- * drawn: the caller refuses them), with `planes` sampling planes when the
- * eye is inside the atmosphere and `spheres` sampling spheres when it is
- * above the top (each >= 1). */
-sh_status gs__atmo_render(const gs__atmo_gl *g, const gs__frame *fr,
-                          const gs__target *t, int planes, int spheres,
-                          gs__atmo_counts *counts, sh_error *err);
+ * it held) under the scene's
+ * directional lights (the others are not drawn: the caller refuses them),
+ * their disks included. */
+sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target *t,
+                          const gs__atmo_settings *set, gs__atmo_counts *counts,
+                          sh_error *err);
 
 /* The view depths of the sky's planes: z[0] = 0 < z[1] < ... < z[n] =
  * zmax, z[1] = zmax * first and the rest in geometric progression. */

@@ -18,7 +18,7 @@
 // (sqrt(R_t^2 - R_g^2)), u_ray_s, u_ray_h, u_mie_s, u_mie_t (Mie's sigma_s
 // + sigma_a), u_mie_h, u_mie_g, u_oz_a, u_oz_c, u_oz_w, u_albedo, u_lsun
 // (unit, towards the sun), u_esun (irradiance), u_table_size (n_mu, n_r),
-// u_background. MIE_PHASE selects Mie's phase function (ATMO_MIE_*),
+// u_background, u_lat_scale (a uniform). MIE_PHASE selects Mie's phase function (ATMO_MIE_*),
 // EYE_OUTSIDE 1 an eye above the top (the planet from space).
 
 #define ATMO_MIE_ISOTROPIC 0
@@ -35,6 +35,7 @@
 #endif
 
 layout(binding = GS_UNIT_ATMO) uniform sampler2D u_table;
+uniform float u_lat_scale;
 
 const float ATMO_TAU_EPS = 1e-6; // GS__ATMO_TAU_EPS
 
@@ -174,6 +175,24 @@ vec2 shadow_span(Ray ry) {
   return s.x < s.y ? s : vec2(BIG);
 }
 
+// What the ray ends on: 0 nothing (it misses the air), 1 the air alone
+// (it leaves through the top), 2 the ground. The in-scattered radiance is
+// smooth in the direction within a class and jumps between classes (the
+// horizon, the limb), so the lattice is interpolated within a class only.
+int ray_class(Ray ry) {
+#if EYE_OUTSIDE
+  float b = u_re * length(cross(u_up, ry.d));
+  return ry.mu >= 0.0 || b >= u_rt ? 0 : b < u_rg ? 2 : 1;
+#else
+  return ground_t(ry) > 0.0 ? 2 : 1;
+#endif
+}
+
+// The pixel position (GL's window coordinates of the whole image's
+// drawn window) of a fragment: gl_FragCoord scaled by u_lat_scale, the
+// lattice's step (1 when the image is drawn at full resolution).
+vec2 frag_pos() { return gl_FragCoord.xy * u_lat_scale; }
+
 // The point at distance t along the ray: its radius r, rho2 = r^2 - R_g^2
 // and height h, and the cosines to its vertical of the ray (mu_p) and of
 // the sun (mu_sp).
@@ -208,9 +227,25 @@ Pt point_at(Ray ry, float t) {
 const float GL3_X = 0.7745966692;
 const float GL3_W0 = 0.5555555556, GL3_W1 = 0.8888888889;
 
+// The eye's optical depth to a point p on the ray (a Pt). Inside the
+// atmosphere: the difference of the depths to the top from the eye and
+// from the point, along the ray, or, when the ray meets the ground, along
+// its reverse (which reaches the top). From space: before the ray's lowest
+// point the depth from the point back to the top (the ray came in that
+// way); after it the whole chord's less the rest to the top. The globals
+// are the pixel's (setup_tau).
+bool g_down;
+vec3 g_tau_e, g_tau_chord;
+#if EYE_OUTSIDE
+#define EYE_TAU(p) (p.mu_p <= 0.0 ? tau_top(p.r, p.rho2, -p.mu_p) \
+                                  : g_tau_chord - tau_top(p.r, p.rho2, p.mu_p))
+#else
+#define EYE_TAU(p) (g_down ? tau_top(p.r, p.rho2, -p.mu_p) - g_tau_e \
+                           : g_tau_e - tau_top(p.r, p.rho2, p.mu_p))
+#endif
+
 // The scattered radiance per unit irradiance of the ray's lit stretch
-// [ta, tb] (3-point Gauss-Legendre), the eye's optical depth to a point by
-// EYE_TAU(p) (the stage defines it from its geometry).
+// [ta, tb] (3-point Gauss-Legendre).
 vec3 inscatter(Ray ry, float ta, float tb) {
   if (!(tb > ta)) return vec3(0.0);
   float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
@@ -228,4 +263,75 @@ vec3 inscatter(Ray ry, float ta, float tb) {
 // inscatter over [ta, tb] without the planet's shadow sh (shadow_span).
 vec3 inscatter_lit(Ray ry, float ta, float tb, vec2 sh) {
   return inscatter(ry, ta, min(tb, sh.x)) + inscatter(ry, max(ta, sh.y), tb);
+}
+
+// What every layer of a pixel's ray shares.
+struct Setup {
+  Ray ry;
+  float vl;   // inside: |view_ray|, view depth to distance along the ray
+  float tend; // inside: where the ray leaves the air (the ground or the top)
+  float b;    // outside: the impact parameter (least distance from the centre)
+  float tp;   // outside: the distance to the ray's lowest point
+  bool ground; // the ray meets the ground
+  vec2 sh;    // the planet's shadow (shadow_span)
+};
+
+// The geometry of the pixel at frag (frag_pos's coordinates). From space
+// the impact parameter comes from a cross product, which keeps its
+// precision at the disc's centre.
+Setup setup_ray(vec2 frag) {
+  Setup s;
+  vec3 v = view_ray(frag);
+  s.vl = length(v);
+  s.ry = make_ray(v / s.vl);
+#if EYE_OUTSIDE
+  s.b = u_re * length(cross(u_up, s.ry.d));
+  s.tp = -u_re * s.ry.mu;
+  s.ground = s.b < u_rg;
+  s.tend = BIG;
+#else
+  float tg = ground_t(s.ry);
+  s.ground = tg > 0.0;
+  s.tend = s.ground ? tg : top_exit_t(s.ry);
+#endif
+  return s;
+}
+
+// The pixel's optical depths to the eye (EYE_TAU's globals) and shadow.
+void setup_tau(inout Setup s) {
+#if EYE_OUTSIDE
+  g_tau_chord = s.ground ? vec3(0.0) : 2.0 * tau_top(s.b, (s.b - u_rg) * (s.b + u_rg), 0.0);
+#else
+  g_down = s.ground;
+  g_tau_e = tau_top(u_re, u_ce, g_down ? -s.ry.mu : s.ry.mu);
+#endif
+  s.sh = shadow_span(s.ry);
+}
+
+// Whether the layer [lo, hi] holds none of the ray: inside, the view
+// depths of a sampling plane's slab; from space, the radii of a sampling
+// sphere's shell.
+bool layer_empty(Setup s, float lo, float hi) {
+#if EYE_OUTSIDE
+  return s.ry.mu >= 0.0 || s.b >= hi;
+#else
+  return !(min(hi * s.vl, s.tend) > lo * s.vl);
+#endif
+}
+
+// The scattered radiance per unit irradiance of the ray's part in the
+// layer [lo, hi]: a slab's part in the air, or a shell's parts in front
+// of and behind the ray's lowest point (split there; none behind it where
+// the ground stops the ray), out of the planet's shadow.
+vec3 layer_radiance(Setup s, float lo, float hi) {
+  if (layer_empty(s, lo, hi)) return vec3(0.0);
+#if EYE_OUTSIDE
+  float sb = sqrt((hi - s.b) * (hi + s.b));
+  float sa = s.b < lo ? sqrt((lo - s.b) * (lo + s.b)) : 0.0;
+  vec3 L = inscatter_lit(s.ry, s.tp - sb, s.tp - sa, s.sh);
+  if (!s.ground) L += inscatter_lit(s.ry, s.tp + sa, s.tp + sb, s.sh);
+  return L;
+#else
+  return inscatter_lit(s.ry, lo * s.vl, min(hi * s.vl, s.tend), s.sh);
+#endif
 }

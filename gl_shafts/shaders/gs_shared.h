@@ -40,6 +40,10 @@
 #define GS_SPOT_EXPONENT_1 1
 #define GS_SPOT_EXPONENT_ANY 2
 
+/* The most sampling planes or spheres an atmosphere's frame draws (the
+ * compose pass holds their depths or radii in a uniform array). */
+#define GS_ATMO_MAX_LAYERS 64
+
 /* Texture units: where the C code binds each texture the shaders sample
  * (layout(binding = ...)). Units from GS_UNIT_FREE up are unused by the
  * renderer (the tests use them). */
@@ -50,6 +54,7 @@
 #define GS_UNIT_XI 4          /* the xi lattice, u_xi */
 #define GS_UNIT_LINDEPTH 5    /* the surfaces' view depth, u_lindepth */
 #define GS_UNIT_ATMO 6        /* the atmosphere's optical depths, u_table */
-#define GS_UNIT_FREE 7
+#define GS_UNIT_ATMO_LATTICE 7 /* the sky's lattice, u_lattice */
+#define GS_UNIT_FREE 8
 
 #endif
