@@ -1,6 +1,7 @@
 #include "gs_atmo.h"
 
 #include <math.h>
+#include <stdio.h>
 
 void gs__atmo_density(const gs__atmo *a, double h, double *rayleigh,
                       double *mie, double *ozone) {
@@ -25,4 +26,51 @@ int gs__atmo_kinks(const gs__atmo *a, double out[3]) {
     if (h > 0.0 && h < top) out[n++] = a->shell.r_ground + h;
   }
   return n;
+}
+
+void gs__atmo_from_medium(const sh_medium *m, gs__atmo *a) {
+  const sh_atmosphere *s = &m->atmo;
+  gs__atmo z = {{s->center, s->ground_radius, s->top_radius},
+                s->ground_albedo,
+                s->rayleigh_sigma_s, s->rayleigh_H,
+                {0, 0, 0}, {0, 0, 0}, 1.0, {SH_PHASE_ISOTROPIC, 0.0},
+                {0, 0, 0}, 0.0, 1.0};
+  if (s->has_mie) {
+    z.mie_s = s->mie_sigma_s;
+    z.mie_a = s->mie_sigma_a;
+    z.mie_h = s->mie_H;
+    z.mie_phase = s->mie_phase;
+  }
+  if (s->has_ozone) {
+    z.ozone_a = s->ozone_sigma_a;
+    z.ozone_center = s->ozone_height;
+    z.ozone_width = s->ozone_width;
+  }
+  *a = z;
+}
+
+/* A refusal at the scene's key `path` (no line: the parser keeps none for
+ * it). */
+static sh_status refuse(const sh_scene *scene, const char *path, sh_error *err,
+                        const char *what) {
+  sh_error_set(err, SH_ERR_SCENE,
+               "gl_shafts does not draw %s in an atmosphere yet; lmm_tracer "
+               "renders them (docs/gl_shafts.md, \"The atmosphere\")",
+               what);
+  if (err) {
+    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+    snprintf(err->path, sizeof err->path, "%s", path);
+  }
+  return SH_ERR_SCENE;
+}
+
+sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err) {
+  if (scene->nshapes > 0) return refuse(scene, "shapes", err, "shapes");
+  for (int i = 0; i < scene->nlights; i++)
+    if (scene->lights[i].type != SH_LIGHT_DIRECTIONAL) {
+      char path[32];
+      snprintf(path, sizeof path, "lights[%d].type", i);
+      return refuse(scene, path, err, "point or spot lights");
+    }
+  return SH_OK;
 }

@@ -11,6 +11,7 @@
 #define GS_ATMO_H
 
 #include "gs_atmo_table.h"
+#include "sh_error.h"
 #include "sh_scene.h"
 
 typedef struct gs__atmo {
@@ -24,6 +25,17 @@ typedef struct gs__atmo {
   sh_vec3 ozone_a;          /* 0 without ozone */
   double ozone_center, ozone_width; /* h_o, w > 0 (1 without ozone) */
 } gs__atmo;
+
+/* The atmosphere of a medium of type SH_MEDIUM_ATMOSPHERE (sh_scene.h's
+ * sh_atmosphere); an absent Mie or ozone part gets coefficients 0. */
+void gs__atmo_from_medium(const sh_medium *m, gs__atmo *a);
+
+/* What gl_shafts draws of a scene whose medium is an atmosphere: the air,
+ * the ground and the sun's disk under directional lights. SH_ERR_SCENE,
+ * located at the key, for shapes (gl_shafts does not yet draw surfaces
+ * nor their shadows in an atmosphere: lmm_tracer renders them) and for
+ * point and spot lights; SH_OK otherwise. */
+sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err);
 
 /* The relative densities at height h: Rayleigh's exp(-h / H_R), Mie's
  * exp(-h / H_M) and the ozone's tent. */

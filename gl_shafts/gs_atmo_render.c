@@ -38,6 +38,12 @@ void gs__atmo_gl_free(gs__atmo_gl *g) {
   gs__atmo_table_free(&g->table);
 }
 
+int gs__atmo_lattice_step(const sh_camera *cam) {
+  double px = cam->fov_y_deg / cam->height; /* degrees a pixel, about */
+  int step = (int)floor(GS__ATMO_LATTICE_DEG / px + 1e-9);
+  return step < 1 ? 1 : step > GS__ATMO_LATTICE_MAX ? GS__ATMO_LATTICE_MAX : step;
+}
+
 void gs__atmo_plane_depths(double zmax, double first, int n, double *z) {
   z[0] = 0.0;
   double z1 = zmax * first;

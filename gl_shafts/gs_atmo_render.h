@@ -33,7 +33,10 @@
 #define GS__ATMO_TABLE_MU 256
 #define GS__ATMO_PLANES 16
 #define GS__ATMO_SPHERES 10
-#define GS__ATMO_LATTICE 4
+/* The lattice's default step: the most pixels (at most 4) that fit in
+ * half a degree of the camera's vertical field of view, at least 1. */
+#define GS__ATMO_LATTICE_DEG 0.5
+#define GS__ATMO_LATTICE_MAX 4
 
 typedef struct gs__atmo_gl {
   gs__atmo atmo;
@@ -54,6 +57,9 @@ typedef struct gs__atmo_settings {
    * drawn at full resolution; 1: every pixel at full resolution. */
   int lattice_step;
 } gs__atmo_settings;
+
+/* The default lattice step for a camera (GS__ATMO_LATTICE_DEG). */
+int gs__atmo_lattice_step(const sh_camera *cam);
 
 /* Builds the table from src (gs__atmo_source_medium for a scene's medium)
  * and uploads it. */

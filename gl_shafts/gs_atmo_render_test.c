@@ -164,7 +164,7 @@ int main(int argc, char **argv) {
   if (argc <= 2)
     for (int i = 0; i < n; i++) {
       view_case vc = cases[i];
-      vc.set.lattice_step = GS__ATMO_LATTICE;
+      vc.set.lattice_step = GS__ATMO_LATTICE_MAX;
       vc.bound = 0.025;
       double ms = 0;
       char name[64];

@@ -4,9 +4,16 @@
 
 #include <math.h>
 
+#include "gs_atmo.h"
 #include "sh_medium.h"
 
+int gs__medium_is_atmosphere(const sh_medium *m) {
+  return m->present && m->type == SH_MEDIUM_ATMOSPHERE;
+}
+
 sh_status gs__medium_check(const sh_scene *scene, sh_error *err) {
+  /* An atmosphere: what gs_atmo_render draws of the scene. */
+  if (gs__medium_is_atmosphere(&scene->medium)) return gs__atmo_check_scene(scene, err);
   /* Height fog is drawn by the shaders (medium.glsl) but not accepted
    * until it is checked against the reference. */
   return sh_medium_require_kinds(scene, "gl_shafts",

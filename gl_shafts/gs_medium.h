@@ -1,8 +1,9 @@
 /* The medium as gl_shafts sees it: the only C code of gl_shafts that looks
  * at the medium's kind (core/sh_medium.h answers everything else), the
  * shaders' medium.glsl being its GLSL side.
- * - Which kinds gl_shafts renders (homogeneous and height fog), refusing
- *   others with sh_medium_require_kinds' located error.
+ * - Which kinds gl_shafts renders (homogeneous and height fog by the
+ *   sweep, an atmosphere by gs_atmo_render.h), refusing others with
+ *   sh_medium_require_kinds' located error.
  * - The kind as the shaders' MEDIUM switch (gs_shared.h), and the medium's
  *   parameters (u_sigma_s, u_sigma_t, u_bmin, u_bmax, u_g, u_fog; at the
  *   base height for height fog, positions in the anchored space of
@@ -20,6 +21,10 @@
 /* SH_OK if gl_shafts renders the scene's medium, else SH_ERR_SCENE located
  * at medium.type (or medium.phase.type), naming what it renders. */
 sh_status gs__medium_check(const sh_scene *scene, sh_error *err);
+
+/* Whether m is an atmosphere, which gs_atmo_render.h draws (its own
+ * shaders, not the sweep's). */
+int gs__medium_is_atmosphere(const sh_medium *m);
 
 /* The MEDIUM switch's value for m (GS_MEDIUM_HOMOGENEOUS without one). */
 int gs__medium_kind(const sh_medium *m);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gs_atmo_render.h"
 #include "gs_context.h"
 #include "gs_geometry.h"
 #include "gs_gl.h"
@@ -42,6 +43,7 @@ struct gs_renderer {
   gs__shadow_map *shadows;    /* kept across draws while their key holds */
   gs__lattice *lattices;
   float *readback;            /* width * height * 4 */
+  gs__atmo_gl *atmo;          /* an atmosphere's table: drawn by gs_atmo_render */
   long built_reported;        /* progs.built at the end of the last draw */
 };
 
@@ -101,6 +103,24 @@ static sh_status check_limits(const gs_renderer *r, sh_error *err) {
                           i, l->map.width, l->map.height, max2d);
   }
   return SH_OK;
+}
+
+static int is_atmosphere(const sh_scene *scene) {
+  return gs__medium_is_atmosphere(&scene->medium);
+}
+
+/* The atmosphere's table, built (again) from the scene's medium when it
+ * is one and differs from the table's. */
+static sh_status sync_atmosphere(gs_renderer *r, sh_error *err) {
+  if (!is_atmosphere(r->scene)) return SH_OK;
+  gs__atmo a;
+  gs__atmo_from_medium(&r->scene->medium, &a);
+  if (r->atmo && memcmp(&a, &r->atmo->atmo, sizeof a) == 0) return SH_OK;
+  if (!r->atmo && !(r->atmo = calloc(1, sizeof *r->atmo)))
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  gs__atmo_gl_free(r->atmo);
+  gs__atmo_source src = gs__atmo_source_medium(&r->scene->medium);
+  return gs__atmo_gl_init(r->atmo, &a, &src, err);
 }
 
 /* A hash (FNV-1a over 32-bit words) of a light map's size and pixels:
@@ -227,6 +247,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
     st = gs__target_create(&r->target, w, h, err);
   if (st == SH_OK) st = gs__sweep_init(&r->sweep, err);
   if (st == SH_OK) st = sync_maps(r, err);
+  if (st == SH_OK) st = sync_atmosphere(r, err);
   if (r->ctx) gs__context_release(r->ctx);
   if (st != SH_OK) {
     gs_renderer_free(r);
@@ -265,6 +286,7 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
    * as they are. The shadow maps are then kept unless their key changed. */
   if (changed & ~(unsigned)SH_CHANGED_ENVIRONMENT) r->lights_stale = 1;
   if (st == SH_OK && (changed & SH_CHANGED_LIGHTS)) st = sync_maps(r, err);
+  if (st == SH_OK && (changed & SH_CHANGED_MEDIUM)) st = sync_atmosphere(r, err);
   return st;
 }
 
@@ -274,6 +296,10 @@ sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
                         "the scene's lights changed in number (%d, was %d): "
                         "make a new renderer",
                         r->scene->nlights, r->nlights);
+  if (is_atmosphere(r->scene) != (r->atmo != NULL))
+    return sh_error_set(err, SH_ERR_ARG,
+                        "the scene's medium changed to or from an atmosphere: "
+                        "make a new renderer");
   sh_status st = gs__medium_check(r->scene, err);
   if (st != SH_OK) return st;
   st = gs__context_make_current(r->ctx, err);
@@ -313,15 +339,17 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   sh_status st = SH_OK;
   gs__frame fr = {scene, &r->view, &r->progs, &r->params, !o->live};
   double start = sh_seconds(), t = start;
+  /* An atmosphere is drawn by gs_atmo_render alone. */
+  int nsweep = r->atmo ? 0 : r->nlights;
 
   /* Lights: their volumes (when a sync changed what they follow) and
    * shadow maps (when their key changed). */
-  for (int i = 0; i < r->nlights && st == SH_OK && r->lights_stale; i++) {
+  for (int i = 0; i < nsweep && st == SH_OK && r->lights_stale; i++) {
     gs__light_setup_free(&r->lights[i]);
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
   }
   if (st == SH_OK) r->lights_stale = 0;
-  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+  for (int i = 0; i < nsweep && st == SH_OK; i++) {
     if (r->lights[i].shadow == GS__SHADOW_NONE) continue;
     int drawn = 0;
     st = gs__shadow_update(&r->shadows[i], &fr, &r->lights[i],
@@ -331,13 +359,13 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   }
   if (st == SH_OK) s.shadow_seconds = lap(&t);
 
-  if (st == SH_OK)
+  if (st == SH_OK && !r->atmo)
     st = gs__surface_render(&fr, &r->geom, r->lights, r->shadows, r->maps,
                             &r->target, err);
   if (st == SH_OK) s.surface_seconds = lap(&t);
 
   gs__sweep_counts counts = {0, 0, 0};
-  for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+  for (int i = 0; i < nsweep && st == SH_OK; i++) {
     const gs__light_setup *ls = &r->lights[i];
     if (!ls->vol->nfaces) continue;
     s.lights_swept++;
@@ -359,6 +387,17 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
     }
     if (st == SH_OK)
       st = gs__sweep_light(&r->sweep, &job, &r->target, &counts, err);
+    s.plane_seconds += lap(&t);
+  }
+  if (st == SH_OK && r->atmo) {
+    /* --planes gives the sampling planes or spheres; else their own
+     * defaults (gs_atmo_render.h). */
+    gs__atmo_settings set = {o->planes > 0 ? o->planes : GS__ATMO_PLANES,
+                             o->planes > 0 ? o->planes : GS__ATMO_SPHERES,
+                             gs__atmo_lattice_step(&scene->camera)};
+    gs__atmo_counts ac;
+    st = gs__atmo_render(r->atmo, &fr, &r->target, &set, &ac, err);
+    counts.planes += ac.planes + ac.spheres;
     s.plane_seconds += lap(&t);
   }
   s.planes = counts.planes;
@@ -405,6 +444,7 @@ void gs_renderer_free(gs_renderer *r) {
       if (r->shadows) gs__shadow_free(&r->shadows[i]);
       if (r->lattices) gs__lattice_free(&r->lattices[i]);
     }
+    if (r->atmo) gs__atmo_gl_free(r->atmo);
     gs__sweep_free(&r->sweep);
     gs__target_free(&r->target);
     gs__geometry_free(&r->geom);
@@ -421,6 +461,7 @@ void gs_renderer_free(gs_renderer *r) {
   free(r->shadows);
   free(r->lattices);
   free(r->readback);
+  free(r->atmo);
   free(r);
 }
 
