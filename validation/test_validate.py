@@ -211,6 +211,23 @@ class HardCasesTest(unittest.TestCase):
             self.assertTrue(math.isclose((m["sigma_s"][0] + m["sigma_a"][0]) * size, depth,
                                          rel_tol=1e-9))
 
+    def test_input_cases_run_only_our_tools(self):
+        # A full run's hard cases include the peers; the input cases ran
+        # BUILD/povray/povray and stopped the run with FileNotFoundError.
+        from .hard import inputs as hard_inputs
+
+        class Ctx:
+            def tool(self, rel):
+                return "/build/" + rel
+
+        class Adapter:
+            def __init__(self, name):
+                self.name = name
+        names = ("lmm_tracer", "gl_shafts", "povray", "cycles", "eevee", "addon_sweep")
+        tools = hard_inputs.cli_tools(Ctx(), [Adapter(n) for n in names])
+        self.assertEqual(tools, {"lmm_tracer": "/build/lmm_tracer/lmm_tracer",
+                                 "gl_shafts": "/build/gl_shafts/gl_shafts"})
+
     def test_bounds(self):
         self.assertEqual(hard_bounds.bound_for("lmm_tracer", "user", "dense", "quick"), 0.25)
         self.assertEqual(hard_bounds.bound_for("lmm_tracer", "user", "dense", "full"), 0.05)
