@@ -415,17 +415,42 @@ static sh_status shape(blend *b, int i, json_t *meshes, sh_error *err) {
   return SH_OK;
 }
 
+/* The data's "height_fog" object: Blender's Z is the scene's Y, and the
+ * coefficients written are those at the box's bottom z_lo (its densest
+ * point), so the density factor exp((z_lo - z) / H) stays in [0, 1] in
+ * single precision however far the box lies from base_height. Cycles
+ * ray-marches a varying density in steps of 0.1 of the box's mean extent
+ * times the material's step rate (Cycles 3.4, Object::compute_volume_step_size):
+ * the rate makes the step H / 16 (the density changes by 6% over a step),
+ * and volume_max_steps lets a ray cross the box's diagonal in such steps. */
+static json_t *height_fog(const sh_medium *m, sh_vec3 blo, sh_vec3 bhi) {
+  sh_vec3 size = sh_sub(bhi, blo);
+  double mean = (size.x + size.y + size.z) / 3.0;
+  double step = m->scale_height / 16.0;
+  double rate = fmin(1.0, step / (0.1 * mean));
+  double steps = ceil(1.5 * sh_length(size) / (0.1 * mean * rate));
+  return json_pack("{s:f, s:f, s:f, s:i}", "bottom", blo.z, "scale_height",
+                   m->scale_height, "step_rate", rate, "max_steps",
+                   (int)fmin(65536.0, fmax(1024.0, steps)));
+}
+
 static json_t *medium(blend *b) {
   const sh_medium *m = &b->scene->medium;
   double eps = 1e-4 * b->radius;
   sh_vec3 lo = to_blender(sh_sub(m->bmin, sh_v3s(eps)));
   sh_vec3 hi = to_blender(sh_add(m->bmax, sh_v3s(eps)));
   sh_vec3 blo = sh_vmin(lo, hi), bhi = sh_vmax(lo, hi);
+  /* The coefficients at the box's bottom for height fog (above), else
+   * everywhere. */
+  double peak = m->type == SH_MEDIUM_HEIGHT_FOG
+                    ? exp(-(blo.z - m->base_height) / m->scale_height)
+                    : 1.0;
+  const sh_vec3 sigma_s = sh_scale(m->sigma_s, peak), sigma_a = sh_scale(m->sigma_a, peak);
   int exact;
   double gs[SE_HG_MAX_LOBES];
   int n = se_phase_to_hg_lobes(&m->phase, gs, &exact);
   sh_vec3 unit;
-  double ds = split_colour(m->sigma_s, &unit);
+  double ds = split_colour(sigma_s, &unit);
   /* Cycles drops a closure whose mean weight is below 1e-5 (its
    * CLOSURE_WEIGHT_CUTOFF) but keeps its extinction: a mixture is used only
    * while every lobe stays well above that. */
@@ -455,11 +480,11 @@ static json_t *medium(blend *b) {
    * Density = sigma_s, which leaves no absorption). One closure, so EEVEE
    * keeps g (it averages the g of closures joined by an Add Shader, the
    * absorption's 0 included). */
-  sh_vec3 st = sh_add(m->sigma_s, m->sigma_a);
+  sh_vec3 st = sh_add(sigma_s, sigma_a);
   double dt = sh_max3(st);
   double c[3], ac[3];
   for (int k = 0; k < 3; k++) {
-    double ss = sh_vget(m->sigma_s, k), sa = sh_vget(m->sigma_a, k);
+    double ss = sh_vget(sigma_s, k), sa = sh_vget(sigma_a, k);
     c[k] = dt > 0 ? fmin(ss / dt, 1.0) : 0.0;
     double room = dt - ss; /* what the channel's absorption may take */
     double root = room > 0 ? fmax(1.0 - sa / room, 0.0) : 1.0;
@@ -469,6 +494,8 @@ static json_t *medium(blend *b) {
                         "max", vec(bhi), "sigma_t", vec(st), "volume", "color", c[0], c[1],
                         c[2], "density", dt, "absorption_color", ac[0], ac[1], ac[2],
                         "anisotropy", g1);
+  if (o && m->type == SH_MEDIUM_HEIGHT_FOG)
+    json_object_set_new(o, "height_fog", height_fog(m, blo, bhi));
   if (o && n > 1) {
     /* Cycles' mixture: n Volume Scatter lobes of density sigma_s / n^2 (it
      * sums their phases unweighted, se_cycles_phase.h) and the scattering
@@ -481,7 +508,7 @@ static json_t *medium(blend *b) {
                                                "density", ds / ((double)n * n),
                                                "anisotropy", gs[i]));
     json_t *mix = json_pack("{s:o}", "scatter", scatter);
-    sh_vec3 sa = sh_add(m->sigma_a, sh_scale(m->sigma_s, 1.0 - 1.0 / n));
+    sh_vec3 sa = sh_add(sigma_a, sh_scale(sigma_s, 1.0 - 1.0 / n));
     double da = sh_max3(sa);
     if (mix && da > 0)
       json_object_set_new(mix, "absorption",

@@ -1,5 +1,7 @@
 #include "se_cycles_phase.h"
 
+#include "se_export.h"
+
 #include <math.h>
 #include <stddef.h>
 
@@ -18,8 +20,9 @@ double se_phase_to_hg(const sh_phase *phase, int *exact) {
   case SH_PHASE_NISHITA_MURKY:
     return (50.0 / 83.0) * (16.0 / 17.0);
   case SH_PHASE_RAYLEIGH:
-  case SH_PHASE_CORNETTE_SHANKS: /* refused before (se_export_scene) */
     return 0.0;
+  case SH_PHASE_CORNETTE_SHANKS:
+    return fmax(-gmax, fmin(gmax, se_phase_cs_mean_cosine(phase->g)));
   }
   return 0.0;
 }

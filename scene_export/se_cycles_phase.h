@@ -11,7 +11,9 @@
  *   whose mean cosine is 0.8): g = 0.4;
  * - nishita_murky: 33/83 isotropic + 50/83 the lobe 50 x^32 (mean cosine
  *   16/17): g = 800/1411;
- * - rayleigh: symmetric, g = 0 as one lobe; two lobes g = +-0.318085.
+ * - rayleigh: symmetric, g = 0 as one lobe; two lobes g = +-0.318085;
+ * - cornette_shanks: one lobe of its mean cosine, se_phase_cs_mean_cosine
+ *   (g = 0.757 for the format's g = 0.7).
  * These are approximations (the notes say so); isotropic and
  * Henyey-Greenstein are exact. */
 #ifndef SE_CYCLES_PHASE_H

@@ -138,3 +138,7 @@ const char *se_phase_name(sh_phase_type type) {
   }
   return "isotropic";
 }
+
+double se_phase_cs_mean_cosine(double g) {
+  return 3.0 * g * (4.0 + g * g) / (5.0 * (2.0 + g * g));
+}

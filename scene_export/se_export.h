@@ -86,6 +86,15 @@ typedef sh_status se_build(const sh_scene *scene, const se_options *opt,
 /* The name of a phase type as the scene format spells it. */
 const char *se_phase_name(sh_phase_type type);
 
+/* The mean cosine of the Cornette-Shanks phase of asymmetry g (the
+ * integral of cos alpha times the normalised phase over the sphere):
+ * 3 g (4 + g^2) / (5 (2 + g^2)), from the integrals of (1 + c^2) c and
+ * (1 + c^2) against the Henyey-Greenstein shape. Neither POV-Ray nor
+ * Cycles has that phase; both targets render it as the Henyey-Greenstein
+ * lobe of this g (approximated: docs/scene_export.md, "Non-uniform
+ * media"). */
+double se_phase_cs_mean_cosine(double g);
+
 /* Appends the notes as comment lines: each line starts with `prefix` (such
  * as "// " or "# "), and the text is sanitised for a comment. */
 void se_notes_comment(const se_notes *notes, se_buf *b, const char *prefix);

@@ -9,6 +9,7 @@
 #include "se_frame.h"
 #include "se_pov_terms.h"
 #include "se_text.h"
+#include "sh_medium.h"
 #include "sh_tessellate.h"
 
 /* The state of one export. */
@@ -22,7 +23,6 @@ typedef struct pov {
   double pov_radius; /* the bounding sphere's radius in POV-Ray units */
   sh_vec3 center;   /* the bounding sphere, in scene units */
   double radius;
-  sh_vec3 sigma_t;  /* per POV-Ray unit */
   const char *name; /* the output's base name (plain), for the light maps */
 } pov;
 
@@ -215,8 +215,13 @@ static void spot_or_point(pov *p, int i) {
     inside = se_in_box(l->position, lo, hi);
   }
   sh_vec3 c = sh_scale(l->intensity, p->scale * p->scale / (2.0 * f * f));
-  if (inside)
-    c = sh_mul(c, sh_vexp(sh_scale(p->sigma_t, -r)));
+  if (inside) {
+    /* The medium's extinction at the light, per POV-Ray unit, over the
+     * radius r of the sphere below (r is 1e-3 of the scene: the density
+     * of a non-uniform medium hardly changes across it). */
+    sh_vec3 st = se_frame_per_length(&p->frame, sh_medium_sigma_t_at(&s->medium, l->position));
+    c = sh_mul(c, sh_vexp(sh_scale(st, -r)));
+  }
   se_buf_printf(b, "// lights[%d]: %s light, 1/r^2 through fade_power 2 with fade_distance %g.\n",
                 i, l->type == SH_LIGHT_SPOT ? "spot" : "point", f);
   se_buf_puts(b, "light_source {\n  ");
@@ -457,10 +462,40 @@ static sh_status shape(pov *p, int i, sh_error *err) {
   return SH_OK;
 }
 
+/* The medium's coefficients at the box's lowest point (its densest, for
+ * height fog) and, for a non-uniform medium, the POV-Ray density pattern
+ * in [0, 1] that scales them: height fog's exp(-(y - y_lo) / H) with y_lo
+ * the enlarged box's bottom, in POV-Ray units (y is not mirrored). The
+ * density_map is the identity ramp, so the pattern's value is the density
+ * (POV-Ray wraps pattern values above 1; min() keeps the bottom hair at 1). */
+static double medium_peak(const pov *p, const sh_vec3 lo) {
+  const sh_medium *m = &p->scene->medium;
+  if (m->type == SH_MEDIUM_HEIGHT_FOG)
+    return exp(-(lo.y - m->base_height) / m->scale_height);
+  return 1.0;
+}
+
+static void medium_density(pov *p, const sh_vec3 lo) {
+  const sh_medium *m = &p->scene->medium;
+  se_buf *b = p->b;
+  if (m->type != SH_MEDIUM_HEIGHT_FOG) return;
+  se_buf_puts(b, "      // Height fog: the density relative to the box's bottom.\n"
+                 "      density {\n        function { min(1, exp((");
+  num(b, se_frame_point(&p->frame, lo).y);
+  se_buf_puts(b, " - y) / ");
+  num(b, se_frame_length(&p->frame, m->scale_height));
+  se_buf_puts(b, ")) }\n        density_map { [0 rgb 0] [1 rgb 1] }\n      }\n");
+}
+
 static void medium(pov *p) {
   const sh_medium *m = &p->scene->medium;
   se_buf *b = p->b;
   se_phase_pov pp = se_phase_to_pov(&m->phase);
+  if (!pp.exact)
+    se_note(p->notes,
+            "medium: POV-Ray has no %s phase; it is rendered as one "
+            "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
+            se_phase_name(m->phase.type), pp.g);
   /* POV-Ray 3.7 holds at most 255 intervals (more: "internal nesting
    * limit"); final quality takes 4 samples in each (with jitter 0, evenly
    * spread: a finer midpoint rule). */
@@ -468,11 +503,13 @@ static void medium(pov *p) {
   int intervals = final ? 255 : 200, samples = final ? 4 : 1;
   sh_vec3 lo, hi;
   medium_box(p, &lo, &hi);
-  sh_vec3 ss = se_frame_per_length(&p->frame, m->sigma_s);
-  sh_vec3 sa = se_frame_per_length(&p->frame, m->sigma_a);
+  double peak = medium_peak(p, lo);
+  sh_vec3 ss = se_frame_per_length(&p->frame, sh_scale(m->sigma_s, peak));
+  sh_vec3 sa = se_frame_per_length(&p->frame, sh_scale(m->sigma_a, peak));
   se_buf_puts(b, "// The medium: its box (enlarged by a hair), invisible and hollow, with\n"
                  "// interior media. Method 2 with jitter 0 and equal samples per interval is a\n"
-                 "// midpoint rule with exact transmittance (method 3 is biased).\n");
+                 "// midpoint rule (with exact transmittance in a homogeneous medium; method 3\n"
+                 "// is biased).\n");
   se_buf_printf(b, "// Phase: %s; POV-Ray's k has sphere mean %.9g, so the scattering colour\n"
                    "// is sigma_s / (4 pi mean) and `extinction` 4 pi mean.\n",
                 pp.comment, pp.mean);
@@ -501,6 +538,7 @@ static void medium(pov *p) {
     colour(b, sa);
     se_buf_puts(b, "\n");
   }
+  medium_density(p, lo);
   se_buf_puts(b, "    }\n  }\n}\n\n");
 }
 
@@ -583,9 +621,6 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   p.name = name;
   choose_frame(&p);
   p.pov_radius = se_frame_length(&p.frame, p.radius);
-  p.sigma_t = scene->medium.present
-                  ? se_frame_per_length(&p.frame, scene->medium.sigma_t)
-                  : sh_v3s(0.0);
 
   /* The body first, so that the header can list every approximation. */
   se_buf body = {0};

@@ -1,5 +1,7 @@
 #include "se_pov_terms.h"
 
+#include "se_export.h"
+
 void se_pov_string(se_buf *b, const char *in) {
   se_buf_puts(b, "\"");
   for (const unsigned char *p = (const unsigned char *)in; *p; p++) {
@@ -14,7 +16,7 @@ void se_pov_string(se_buf *b, const char *in) {
 }
 
 se_phase_pov se_phase_to_pov(const sh_phase *phase) {
-  se_phase_pov p = {1, 0.0, 1.0, "isotropic, POV-Ray type 1"};
+  se_phase_pov p = {1, 0.0, 1.0, "isotropic, POV-Ray type 1", 1};
   switch (phase->type) {
   case SH_PHASE_ISOTROPIC:
     break;
@@ -42,7 +44,14 @@ se_phase_pov se_phase_to_pov(const sh_phase *phase) {
     p.mean = 0.799372013 * (4.0 / 3.0);
     p.comment = "Rayleigh, POV-Ray type 4";
     break;
-  case SH_PHASE_CORNETTE_SHANKS: /* refused before (se_export_scene) */
+  case SH_PHASE_CORNETTE_SHANKS:
+    /* POV-Ray has no Cornette-Shanks phase: the Henyey-Greenstein lobe of
+     * its mean cosine (se_export.h), approximated. */
+    p.type = 5;
+    p.g = se_phase_cs_mean_cosine(phase->g);
+    p.comment = "Cornette-Shanks approximated by the Henyey-Greenstein lobe of its "
+                "mean cosine, POV-Ray type 5";
+    p.exact = 0;
     break;
   }
   return p;

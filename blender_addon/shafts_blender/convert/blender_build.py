@@ -177,7 +177,12 @@ def light_transmittance(tree, t):
     light through the medium's box: exp(-sigma_t L), L the length of the
     segment P -> P + d inside the box (slab test), d = light position - P
     (point, spot) or a long step towards a sun. EEVEE lights surfaces as if
-    no medium were there; this is the factor it leaves out."""
+    no medium were there; this is the factor it leaves out. In height fog
+    (t["fog"]) L is the integral of the density factor along the segment
+    inside the box, rho(z_low) L_box (1 - exp(-x)) / x with z_low the
+    inside part's lower end and x = |dz| (t1 - t0) / H (the core's
+    cancellation-free form; x is kept above 1e-3, an error of at most
+    5e-4 of the optical depth, where single precision would cancel)."""
     pos = tree.nodes.new("ShaderNodeNewGeometry").outputs["Position"]
     # A tiny offset keeps every component of d away from 0, where Blender's
     # safe division gives 0 instead of +-infinity.
@@ -198,6 +203,23 @@ def light_transmittance(tree, t):
               smath(tree, "MINIMUM", far.outputs[2], 1.0))
     inside = smath(tree, "MULTIPLY", smath(tree, "MAXIMUM", smath(tree, "SUBTRACT", t1, t0), 0.0),
                   vmath(tree, "LENGTH", d))
+    fog = t.get("fog")
+    if fog is not None:
+        dxyz = tree.nodes.new("ShaderNodeSeparateXYZ")
+        pxyz = tree.nodes.new("ShaderNodeSeparateXYZ")
+        tree.links.new(d, dxyz.inputs[0])
+        tree.links.new(pos, pxyz.inputs[0])
+        dz = dxyz.outputs["Z"]
+        span = smath(tree, "MAXIMUM", smath(tree, "SUBTRACT", t1, t0), 0.0)
+        z0 = smath(tree, "ADD", pxyz.outputs["Z"], smath(tree, "MULTIPLY", t0, dz))
+        z1 = smath(tree, "ADD", pxyz.outputs["Z"], smath(tree, "MULTIPLY", t1, dz))
+        below = smath(tree, "SUBTRACT", fog["bottom"], smath(tree, "MINIMUM", z0, z1))
+        rho = smath(tree, "EXPONENT", smath(tree, "DIVIDE", below, fog["scale_height"]))
+        rise = smath(tree, "MULTIPLY", span, smath(tree, "ABSOLUTE", dz))
+        x = smath(tree, "MAXIMUM", smath(tree, "DIVIDE", rise, fog["scale_height"]), 1e-3)
+        g = smath(tree, "DIVIDE", smath(tree, "SUBTRACT", 1.0, smath(
+            tree, "EXPONENT", smath(tree, "MULTIPLY", x, -1.0))), x)
+        inside = smath(tree, "MULTIPLY", smath(tree, "MULTIPLY", inside, rho), g)
     rgb_out = tree.nodes.new("ShaderNodeCombineXYZ")
     for c in range(3):
         tau = smath(tree, "MULTIPLY", inside, -t["sigma_t"][c])
@@ -228,7 +250,7 @@ def transmittance_setup(data, engine):
     mat = matrix(lights[0].get("matrix"), "lights[0].matrix")
     far = 10.0 * numbers([data.get("camera", {}).get("clip_end")], 1, "camera.clip_end")[0]
     t = {"lo": tuple(lo), "hi": tuple(hi), "sigma_t": sigma_t, "eps": 1e-9 * far,
-         "position": None, "towards": None}
+         "position": None, "towards": None, "fog": fog_setup(m)}
     if lights[0].get("type") == "SUN":
         z = mat.col[2]
         t["towards"] = (z[0] * far, z[1] * far, z[2] * far)
@@ -402,6 +424,37 @@ def card_material(item, images, index):
     return mat
 
 
+def fog_setup(item):
+    """The medium's "height_fog" data checked, or None for a homogeneous
+    medium: the coefficients written are those at the box's bottom z_lo,
+    and the density factor at a point of Blender height z is
+    exp((z_lo - z) / H)."""
+    f = item.get("height_fog")
+    if f is None:
+        return None
+    if not isinstance(f, dict):
+        raise DataError("medium.height_fog: expected an object")
+    what = "medium.height_fog."
+    fog = {k: numbers([f.get(k)], 1, what + k)[0]
+           for k in ("bottom", "scale_height", "step_rate", "max_steps")}
+    if not (fog["scale_height"] > 0 and fog["step_rate"] > 0 and fog["max_steps"] >= 1):
+        raise DataError("medium.height_fog: scale_height, step_rate and max_steps "
+                        "must be above 0")
+    fog["max_steps"] = int(fog["max_steps"])
+    return fog
+
+
+def fog_density(tree, fog, density):
+    """A socket giving density * exp((z_lo - z) / H) at the shading point
+    (Geometry > Position; Blender's Z is the scene's height)."""
+    pos = tree.nodes.new("ShaderNodeNewGeometry").outputs["Position"]
+    xyz = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(pos, xyz.inputs[0])
+    below = smath(tree, "SUBTRACT", fog["bottom"], xyz.outputs["Z"])
+    rho = smath(tree, "EXPONENT", smath(tree, "DIVIDE", below, fog["scale_height"]))
+    return smath(tree, "MULTIPLY", rho, density)
+
+
 def volume_material(item, engine):
     """The medium, no surface: one Principled Volume (Color, Density,
     Absorption Color, Anisotropy as the writer computed them, so that its
@@ -409,10 +462,25 @@ def volume_material(item, engine):
     engines), or, for Cycles when the data holds a mixture of lobes
     ("cycles_mixture"), Volume Scatter lobes plus Volume Absorption joined
     by Add Shaders (Cycles sums their phases; EEVEE would average their g,
-    so it keeps the single lobe)."""
+    so it keeps the single lobe). Height fog ("height_fog") multiplies
+    every Density by its node graph (fog_density); Cycles then ray-marches
+    the material at the data's step rate (setup_render raises the scene's
+    volume_max_steps to the data's)."""
     mat, tree, out = new_material("medium")
-    set_if(mat.cycles, "homogeneous_volume", True)
+    fog = fog_setup(item)
+    set_if(mat.cycles, "homogeneous_volume", fog is None)
     set_if(mat.cycles, "volume_sampling", "MULTIPLE_IMPORTANCE")
+    if fog is not None:
+        set_if(mat.cycles, "volume_step_rate", fog["step_rate"])
+
+    def volume(kind, value, **inputs):
+        n = node(tree, kind, **inputs)
+        if fog is None:
+            n.inputs["Density"].default_value = value
+        else:
+            tree.links.new(fog_density(tree, fog, value), n.inputs["Density"])
+        return n
+
     mix = item.get("cycles_mixture")
     if engine == "cycles" and mix is not None:
         if not isinstance(mix, dict) or not isinstance(mix.get("scatter"), list):
@@ -420,16 +488,17 @@ def volume_material(item, engine):
         parts = []
         for k, lobe in enumerate(mix["scatter"]):
             what = "medium.cycles_mixture.scatter[%d]" % k
-            parts.append(node(tree, "ShaderNodeVolumeScatter",
-                              Color=rgb(lobe.get("color"), what + ".color"),
-                              Density=numbers([lobe.get("density")], 1, what)[0],
-                              Anisotropy=numbers([lobe.get("anisotropy")], 1, what)[0]).outputs[0])
+            parts.append(volume("ShaderNodeVolumeScatter",
+                                numbers([lobe.get("density")], 1, what)[0],
+                                Color=rgb(lobe.get("color"), what + ".color"),
+                                Anisotropy=numbers([lobe.get("anisotropy")], 1,
+                                                   what)[0]).outputs[0])
         if "absorption" in mix:
             a = mix["absorption"]
             what = "medium.cycles_mixture.absorption"
-            parts.append(node(tree, "ShaderNodeVolumeAbsorption",
-                              Color=rgb(a.get("color"), what + ".color"),
-                              Density=numbers([a.get("density")], 1, what)[0]).outputs[0])
+            parts.append(volume("ShaderNodeVolumeAbsorption",
+                                numbers([a.get("density")], 1, what)[0],
+                                Color=rgb(a.get("color"), what + ".color")).outputs[0])
         total = add_all(tree, parts)
         if total is not None:
             tree.links.new(total, out.inputs["Volume"])
@@ -438,10 +507,10 @@ def volume_material(item, engine):
     if not isinstance(v, dict):
         raise DataError("medium.volume: expected an object")
     what = "medium.volume"
-    p = node(tree, "ShaderNodeVolumePrincipled",
-             Color=rgb(v.get("color"), what + ".color"),
-             Density=numbers([v.get("density")], 1, what + ".density")[0],
-             Anisotropy=numbers([v.get("anisotropy")], 1, what + ".anisotropy")[0])
+    p = volume("ShaderNodeVolumePrincipled",
+               numbers([v.get("density")], 1, what + ".density")[0],
+               Color=rgb(v.get("color"), what + ".color"),
+               Anisotropy=numbers([v.get("anisotropy")], 1, what + ".anisotropy")[0])
     p.inputs["Absorption Color"].default_value = rgb(v.get("absorption_color"),
                                                      what + ".absorption_color")
     tree.links.new(p.outputs[0], out.inputs["Volume"])
@@ -492,6 +561,9 @@ def setup_render(scene, data, opts, medium_box):
         c.glossy_bounces = depth
         c.transmission_bounces = depth
         c.volume_bounces = 0
+        fog = fog_setup(data["medium"]) if "medium" in data else None
+        if fog is not None:
+            c.volume_max_steps = max(int(c.volume_max_steps), fog["max_steps"])
         c.transparent_max_bounces = 64
         c.caustics_reflective = False
         c.caustics_refractive = False
