@@ -12,6 +12,8 @@
 #include "sh_rng.h"
 #include "sh_test.h"
 
+#include <string.h>
+
 /* Bruneton 2017's Earth in km (the contract's reference values). */
 static sh_atmosphere earth(void) {
   sh_atmosphere a = {0};
@@ -322,11 +324,47 @@ static void test_ground(void) {
   SH_CHECK(!sh_atmosphere_ground_blocks(&a, sh_v3(0, -12730, 0), sh_v3(0, 1, 0), 10));
 }
 
+/* The medium's segment and ray forms agree with the span form along a unit
+ * direction, whatever the length of the direction they are given. */
+static void test_medium_forms(void) {
+  sh_medium m = {0};
+  m.present = 1;
+  m.type = SH_MEDIUM_ATMOSPHERE;
+  m.atmo = earth();
+  sh_vec3 a = sh_v3(-300, 2, 40), b = sh_v3(500, 30, -60);
+  sh_vec3 d = sh_sub(b, a);
+  double len = sh_length(d);
+  sh_vec3 u = sh_scale(d, 1 / len);
+  sh_vec3 seg = sh_medium_optical_depth(&m, a, b);
+  sh_vec3 span = sh_atmosphere_optical_depth(&m.atmo, a, u, 0, len);
+  SH_CHECK_NEAR(seg.y, span.y, 1e-14, 0);
+  double t0, t1, s0, s1;
+  SH_CHECK(sh_medium_clip(&m, a, sh_scale(d, 3.0), 0, INFINITY, &t0, &t1));
+  SH_CHECK(sh_atmosphere_clip(&m.atmo, a, u, 0, INFINITY, &s0, &s1));
+  SH_CHECK_NEAR(t1 * 3 * len, s1, 1e-12, 0);
+  SH_CHECK_NEAR(sh_medium_length(&m, a, b), len, 1e-14, 0);
+  sh_vec3 ray = sh_medium_optical_depth_ray(&m, a, u);
+  SH_CHECK_NEAR(ray.z, sh_atmosphere_optical_depth(&m.atmo, a, u, 0, s1).z, 1e-14, 0);
+  /* The coefficients at a point: sigma_t = sigma_s + sigma_a, and the
+   * ground-level sigma_s of the contract's values. */
+  sh_vec3 p0 = sh_v3(0, 0, 0);
+  sh_vec3 st = sh_medium_sigma_t_at(&m, p0);
+  sh_vec3 ss = sh_medium_sigma_s_at(&m, p0), sa = sh_medium_sigma_a_at(&m, p0);
+  SH_CHECK_NEAR(st.x, ss.x + sa.x, 1e-15, 0);
+  SH_CHECK_NEAR(ss.z, 33.1e-3 + 3.996e-3, 1e-14, 0);
+  SH_CHECK_NEAR(sa.z, 0.444e-3, 1e-14, 0); /* no ozone at the ground */
+  sh_vec3 p25 = sh_v3(0, 25, 0);
+  SH_CHECK_NEAR(sh_medium_sigma_a_at(&m, p25).y,
+                0.444e-3 * exp(-25 / 1.2) + 1.881e-3, 1e-12, 0);
+  SH_CHECK(!strcmp(sh_medium_type_name(m.type), "atmosphere"));
+}
+
 int main(void) {
   test_zenith();
   test_phase();
   test_depth_against_quadrature();
   test_majorant_and_sampling();
   test_ground();
+  test_medium_forms();
   SH_TEST_DONE();
 }

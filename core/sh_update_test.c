@@ -296,7 +296,33 @@ static void test_bad(void) {
   sh_scene_free(orig);
 }
 
+/* An atmosphere by patch: set, unchanged when the same, changed when only
+ * its ozone changes (the patch compares every key of the kind). */
+#define ATMO_PATCH(width)                                                    \
+  "{\"medium\": {\"type\": \"atmosphere\", \"center\": [0, -6360, 0], "       \
+  "\"ground_radius\": 6360, \"top_radius\": 6420, \"rayleigh\": "            \
+  "{\"sigma_s\": [5.802e-3, 13.558e-3, 33.1e-3], \"scale_height\": 8}, "      \
+  "\"ozone\": {\"sigma_a\": [0.650e-3, 1.881e-3, 0.085e-3], "                \
+  "\"center_height\": 25, \"width\": " width "}}}"
+
+static void test_atmosphere_patch(void) {
+  sh_scene *s = parse(base);
+  sh_error err;
+  unsigned changed = 999;
+  if (!s) return;
+  SH_CHECK(sh_scene_update(s, ATMO_PATCH("30"), "p.json", &changed, &err) == SH_OK);
+  SH_CHECK(changed == SH_CHANGED_MEDIUM);
+  SH_CHECK(s->medium.type == SH_MEDIUM_ATMOSPHERE && s->medium.atmo.top_radius == 6420);
+  SH_CHECK(sh_scene_update(s, ATMO_PATCH("30"), "p.json", &changed, &err) == SH_OK);
+  SH_CHECK(changed == 0);
+  SH_CHECK(sh_scene_update(s, ATMO_PATCH("20"), "p.json", &changed, &err) == SH_OK);
+  SH_CHECK(changed == SH_CHANGED_MEDIUM);
+  SH_CHECK(s->medium.atmo.ozone_width == 20);
+  sh_scene_free(s);
+}
+
 int main(void) {
+  test_atmosphere_patch();
   test_updates();
   test_map_follows_camera_up();
   test_bad();
