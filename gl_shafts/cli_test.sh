@@ -42,7 +42,11 @@ run_bad "unknown option" "$dir/good.json" -o "$dir/x.exr" --bogus
 run_bad "two scenes" "$dir/good.json" "$dir/good.json" -o "$dir/x.exr"
 bad_scenes_refused "$tool" "$dir/good.json"
 camera_at_light_warns "$tool"
-height_fog_refused "$dir/good.json" gl_shafts "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q
+# Height fog is rendered (issue 12 part 3).
+height_fog_scene "$dir/good.json" "$dir/fog.json"
+"$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q; check "height fog renders" 0 $?
+[ -s "$dir/fog_out.exr" ] || { echo "FAIL: height fog: no output"; fail=1; }
+rm -f "$dir/fog.json" "$dir/fog_out.exr"
 cornette_shanks_refused "$dir/good.json" gl_shafts "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q
 # A finite double that is no float (a camera 1e39 away) never becomes a
 # shader literal or a uniform: a clear error, not a shader that fails to

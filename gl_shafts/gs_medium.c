@@ -14,10 +14,10 @@ int gs__medium_is_atmosphere(const sh_medium *m) {
 sh_status gs__medium_check(const sh_scene *scene, sh_error *err) {
   /* An atmosphere: what gs_atmo_render draws of the scene. */
   if (gs__medium_is_atmosphere(&scene->medium)) return gs__atmo_check_scene(scene, err);
-  /* Height fog is drawn by the shaders (medium.glsl) but not accepted
-   * until it is checked against the reference. */
   return sh_medium_require_kinds(scene, "gl_shafts",
-                                 SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS), err);
+                                 SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS) |
+                                     SH_MEDIUM_KIND(SH_MEDIUM_HEIGHT_FOG),
+                                 err);
 }
 
 int gs__medium_kind(const sh_medium *m) {

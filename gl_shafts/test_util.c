@@ -79,6 +79,15 @@ int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
   return 0;
 }
 
+int tu_check_reference(const char *name, const sh_scene *s, int spp, double bound) {
+  sh_image gl = {0}, ref = {0};
+  int ok = tu_reference(s, spp, &ref) == SH_OK && tu_gl(s, NULL, &gl) == SH_OK &&
+           tu_check_close(name, &gl, &ref, bound);
+  sh_image_free(&gl);
+  sh_image_free(&ref);
+  return ok;
+}
+
 gs__context *tu_context(void) {
   gs__context *ctx = NULL;
   sh_error err = {0};

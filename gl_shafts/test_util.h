@@ -39,6 +39,11 @@ double tu_error(const sh_image *img, const sh_image *ref);
 int tu_check_close(const char *name, const sh_image *img, const sh_image *ref,
                    double bound);
 
+/* Renders s with gl_shafts' defaults and with the reference at `spp`
+ * samples and checks them with tu_check_close(name, ..., bound). Returns 1
+ * if both render and the bound holds. */
+int tu_check_reference(const char *name, const sh_scene *s, int spp, double bound);
+
 /* Draws a kept renderer's frame of s into img (allocated here; the caller
  * frees it). Prints the error and returns 0 on failure, else 1. */
 int tu_draw(gs_renderer *r, const sh_scene *s, sh_image *img, gs_stats *stats);

@@ -14,6 +14,8 @@ Outputs (output_dir defaults to scenes/assets next to this script's parent):
   gobo_dots.png       polka dots, white on black, 128x128 grey (seed 000 fig 7b)
   gobo_star.png       a six-pointed star with a ring, 128x128 grey (fig 7b)
   terrain.png         mountain ridges, 128x128 grey heightfield (fig 8a)
+  valley.png          a valley between two ridges, the right one notched,
+                      128x128 grey heightfield (issue 12's valley in fog)
   stained_glass.png   coloured panes and lead lines, 128x128 RGB (fig 8b)
 """
 
@@ -150,6 +152,17 @@ def value_noise(rng, n):
     return f
 
 
+def height_grid(size, height):
+    """A size x size grid of height(u, v) for u, v in [0, 1] (v down the
+    image's rows), clamped at 0 and scaled so that the highest is 1."""
+    rows = []
+    for y in range(size):
+        v = y / (size - 1)
+        rows.append([max(height(x / (size - 1), v), 0.0) for x in range(size)])
+    top = max(max(r) for r in rows)
+    return [[[h / top] for h in r] for r in rows]
+
+
 def make_terrain(size=128):
     """Heights in [0, 1]: a high mountain ridge running along x near the back
     (top of the image; image rows are z) whose crest is cut by narrow, deep
@@ -158,28 +171,46 @@ def make_terrain(size=128):
     rng = random.Random(8)
     n1, n2 = value_noise(rng, 5), value_noise(rng, 11)
     notches = [(0.18, 0.035), (0.41, 0.05), (0.63, 0.03), (0.84, 0.045)]
-    rows = []
-    for y in range(size):
-        v = y / (size - 1)
-        row = []
-        for x in range(size):
-            u = x / (size - 1)
-            # The main ridge: a crest line that wanders, with notches.
-            centre = 0.24 + 0.05 * math.sin(2 * math.pi * (u * 1.2 + 0.1))
-            crest = 0.85 + 0.15 * math.sin(2 * math.pi * (u * 2.3 + 0.4))
-            for nu, nw in notches:
-                crest -= 0.62 * math.exp(-((u - nu) / nw) ** 2)
-            h = crest * math.exp(-((v - centre) / 0.12) ** 2)
-            # Foothills.
-            fc = 0.5 + 0.03 * math.sin(2 * math.pi * (u * 2.0 + 0.3))
-            fh = 0.28 + 0.1 * math.sin(2 * math.pi * (u * 3.1 + 0.7))
-            h = max(h, fh * math.exp(-((v - fc) / 0.07) ** 2))
-            h += (0.06 * n1(u, v) + 0.025 * n2(u, v)) * (1.2 - v)
-            h *= 1.0 - 0.8 * max(v - 0.55, 0.0) / 0.45  # the valley in front
-            row.append(max(h, 0.0))
-        rows.append(row)
-    top = max(max(r) for r in rows)
-    return [[[h / top] for h in r] for r in rows]
+
+    def height(u, v):
+        # The main ridge: a crest line that wanders, with notches.
+        centre = 0.24 + 0.05 * math.sin(2 * math.pi * (u * 1.2 + 0.1))
+        crest = 0.85 + 0.15 * math.sin(2 * math.pi * (u * 2.3 + 0.4))
+        for nu, nw in notches:
+            crest -= 0.62 * math.exp(-((u - nu) / nw) ** 2)
+        h = crest * math.exp(-((v - centre) / 0.12) ** 2)
+        # Foothills.
+        fc = 0.5 + 0.03 * math.sin(2 * math.pi * (u * 2.0 + 0.3))
+        fh = 0.28 + 0.1 * math.sin(2 * math.pi * (u * 3.1 + 0.7))
+        h = max(h, fh * math.exp(-((v - fc) / 0.07) ** 2))
+        h += (0.06 * n1(u, v) + 0.025 * n2(u, v)) * (1.2 - v)
+        h *= 1.0 - 0.8 * max(v - 0.55, 0.0) / 0.45  # the valley in front
+        return h
+    return height_grid(size, height)
+
+
+def make_valley(size=128):
+    """Heights in [0, 1] of a valley running along z (image rows) between
+    two side ridges, closed at the far end (the top of the image) by a
+    cross ridge whose crest is cut by deep notches, through which a low sun
+    beyond it shines down the valley; a gently rising floor and some value
+    noise."""
+    rng = random.Random(12)
+    n1, n2 = value_noise(rng, 6), value_noise(rng, 13)
+    notches = [(0.33, 0.035), (0.47, 0.025), (0.6, 0.045), (0.72, 0.03)]
+
+    def height(u, v):
+        crest = 0.8 + 0.06 * math.sin(2 * math.pi * (u * 1.7 + 0.2))
+        for nu, nw in notches:
+            crest -= 0.6 * math.exp(-((u - nu) / nw) ** 2)
+        across = crest * math.exp(-((v - 0.1) / 0.07) ** 2)
+        right = (0.9 + 0.1 * math.sin(2 * math.pi * (v * 1.3 + 0.1))) \
+            * math.exp(-((u - 0.9) / 0.1) ** 2)
+        left = (0.7 + 0.08 * math.sin(2 * math.pi * (v * 2.3 + 0.6))) \
+            * math.exp(-((u - 0.08) / 0.1) ** 2)
+        floor = 0.03 + 0.04 * (1.0 - v)
+        return max(across, right, left, floor) + 0.05 * n1(u, v) + 0.02 * n2(u, v)
+    return height_grid(size, height)
 
 
 # ---------------------------------------------------------------- stained glass
@@ -415,6 +446,8 @@ def main():
     # tagged linear (gAMA 1.0), so that readers take code / 255 as height.
     write_png(os.path.join(out, "terrain.png"), 128, 128, 1,
               encode_rows(make_terrain(128), linear=False), linear_data=True)
+    write_png(os.path.join(out, "valley.png"), 128, 128, 1,
+              encode_rows(make_valley(128), linear=False), linear_data=True)
     write_png(os.path.join(out, "stained_glass.png"), 128, 128, 3,
               encode_rows(make_stained_glass(128)))
     for name in sorted(os.listdir(out)):
