@@ -16,7 +16,8 @@ scene, e.g. before the atmosphere lands in it):
 - blender_sky: Blender 3.4's Nishita sky texture (validation/nishita_blender.py,
   Cycles, one sample: the texture is deterministic) seen from the scene's
   camera in the planet's local frame (Z the local vertical at the eye, Y the
-  sun's azimuth), altitude from the eye's height (Blender's model is the
+  sun's azimuth), its sun disk only where the scene's sun has one (of the
+  same size), altitude from the eye's height (Blender's model is the
   Earth: lengths are scaled by 6360 km / ground_radius), scaled per
   channel by the scene's sun irradiance over Blender's own (measured from
   its disk, as validation/nishita.py does). Only from within Blender's 60 km
@@ -64,9 +65,13 @@ def run(cmd, cwd=None, timeout=3600):
 
 
 def first_error(proc):
+    """A tool's first error line, without the tool's name and the file's
+    place: 'medium.type: gl_shafts renders homogeneous media only, ...'."""
     text = (proc.stderr or proc.stdout or "").strip().splitlines()
     lines = [l for l in text if "error" in l.lower()] or text
-    return lines[0] if lines else "exit status %d" % proc.returncode
+    if not lines:
+        return "exit status %d" % proc.returncode
+    return re.sub(r"^(\S+: error: )?(\S+:\d+:\d+: )?", "", lines[0])
 
 
 # --- renderers ---------------------------------------------------------------
@@ -118,7 +123,7 @@ def _export(ctx, scene, target, out):
     proc, _ = run([ctx.build / "scene_export" / "scene_export", scene.path, "--to", target,
                    "-o", out, "-p"])
     if proc.returncode != 0:
-        raise Skip("scene_export --to %s: %s" % (target, first_error(proc)))
+        raise Skip("scene_export: %s" % first_error(proc))
 
 
 def r_pov(ctx, scene, work):
@@ -190,6 +195,11 @@ def blender_sky_view(data):
             "dir": [_dot(look, x_b), _dot(look, y_b), _dot(look, up)],
             "fov_deg": cam["fov_y_deg"], "width": cam["width"], "height": cam["height"],
             "samples": 1, "altitude_m": max(0.0, altitude_m)}
+    # Blender's disk only where the scene's sun has one, of the same size.
+    diameter = float(suns[0].get("angular_diameter_deg", 0.0))
+    view["sun_disc"] = diameter > 0
+    if diameter > 0:
+        view["sun_size_deg"] = diameter
     return view, suns[0]["irradiance"]
 
 

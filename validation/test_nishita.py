@@ -81,6 +81,7 @@ class BenchSkyView(unittest.TestCase):
         for got, w in zip(view["dir"], want):
             self.assertAlmostEqual(got, w, places=9)
         self.assertEqual(irradiance, [1, 2, 3])
+        self.assertFalse(view["sun_disc"])  # the scene's sun has no disk
 
     def test_limits(self):
         with self.assertRaises(bench_sky.Skip):
