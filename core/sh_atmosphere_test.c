@@ -357,6 +357,8 @@ static void test_medium_forms(void) {
   SH_CHECK_NEAR(sh_medium_sigma_a_at(&m, p25).y,
                 0.444e-3 * exp(-25 / 1.2) + 1.881e-3, 1e-12, 0);
   SH_CHECK(!strcmp(sh_medium_type_name(m.type), "atmosphere"));
+  /* A point light's floor: 1e-4 of the air's 60 km, not of the box. */
+  SH_CHECK_NEAR(sh_medium_light_min_distance(&m), 6e-3, 1e-12, 0);
 }
 
 int main(void) {

@@ -299,7 +299,10 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
 }
 
 double sh_medium_light_min_distance(const sh_medium *m) {
-  return m->present ? 1e-4 * sh_length(sh_sub(m->bmax, m->bmin)) : 0.0;
+  if (!m->present) return 0.0;
+  if (m->type == SH_MEDIUM_ATMOSPHERE)
+    return 1e-4 * (m->atmo.top_radius - m->atmo.ground_radius);
+  return 1e-4 * sh_length(sh_sub(m->bmax, m->bmin));
 }
 
 int sh_scene_camera_at_light(const sh_scene *scene) {

@@ -162,7 +162,9 @@ const char *sh_medium_type_name(sh_medium_type type);
 
 /* The nearest a ray is taken to pass to a point or spot light when the
  * light it scatters is integrated: 1e-4 of the diagonal of the medium's
- * box (0 without a medium). The in-scattered radiance of a ray through a
+ * box (for an atmosphere, 1e-4 of the air's thickness, top_radius -
+ * ground_radius: 6 m for the Earth in km, where the box's diagonal would
+ * give 2.2 km; 0 without a medium). The in-scattered radiance of a ray through a
  * point light is unbounded (the integral of 1/r^2 diverges there: the
  * camera at a light inside the medium saw 9.3e7 in lmm_tracer and 830 in
  * gl_shafts); every renderer here integrates 1/r^2 with r^2 = (t - b)^2 +
