@@ -6,8 +6,9 @@
 # the type, base_height and scale_height), which shows what the fog itself
 # costs. Then (--part side, at half the size) a version lit from the side,
 # the sun 55 degrees from the view so that its shafts cross the valley,
-# with the planes swept: where one slab's part passes from light to shadow
-# and back (docs/gl_shafts.md, "Limits"). Timed in-process by
+# with the planes swept: its shafts cross the view, so a slab's part may
+# pass from light to shadow and back (docs/gl_shafts.md, "Limits"). Timed
+# in-process by
 # gl_shafts_bench (first frame apart). Prints Markdown tables;
 # docs/gl_shafts.md ("Height fog") quotes them.
 #
@@ -35,11 +36,11 @@ bench=$build/gl_shafts/gl_shafts_bench
 cache=$build/gl_shafts_refs
 mkdir -p "$cache"
 fog=$root/scenes/valley_fog.json
-# The homogeneous twin lives beside the scene's assets, in a directory of
-# its own under the build tree.
+# The derived scenes live in a directory of their own under the build tree,
+# with a copy of the heightfield (a scene names only files in its own tree).
 twin_dir=$build/fog_bench
-mkdir -p "$twin_dir"
-ln -sfn "$root/scenes/assets" "$twin_dir/assets"
+mkdir -p "$twin_dir/assets"
+cp "$root/scenes/assets/valley.png" "$twin_dir/assets/"
 twin=$twin_dir/valley_homogeneous.json
 sed 's/"type": "height_fog", "base_height": 0, "scale_height": 2.0,//' "$fog" >"$twin"
 grep -q height_fog "$twin" && { echo "fog_bench.sh: the twin kept its type" >&2; exit 1; }
