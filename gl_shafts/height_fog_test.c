@@ -2,8 +2,8 @@
  * - scenes/valley_fog.json (a heightfield valley, the sun's shafts through
  *   the notches of a ridge) at 96x72 with gl_shafts' defaults, within 2%
  *   (the project's relative RMS over the lit pixels) of the reference at
- *   512 samples a pixel; measured 1.34% (the reference at 512 samples is
- *   0.08% from one at 2048; docs/gl_shafts.md, "Height fog");
+ *   512 samples a pixel; measured 1.34% (docs/gl_shafts.md, "Height
+ *   fog");
  * - a horizontal ray under a vertical sun, along which the density is
  *   constant: in-scattered radiance E p sigma_s(y) exp(-tau_sun(y)) (1 -
  *   exp(-sigma_t(y) L)) / sigma_t(y) plus the background times exp(-sigma_t(y)
