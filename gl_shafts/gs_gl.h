@@ -50,6 +50,11 @@
   X(PFNGLTEXTUREPARAMETERFVPROC, TextureParameterfv)                         \
   X(PFNGLBINDTEXTUREUNITPROC, BindTextureUnit)                               \
   X(PFNGLCREATEFRAMEBUFFERSPROC, CreateFramebuffers)                         \
+  X(PFNGLCREATESAMPLERSPROC, CreateSamplers)                                 \
+  X(PFNGLDELETESAMPLERSPROC, DeleteSamplers)                                 \
+  X(PFNGLSAMPLERPARAMETERIPROC, SamplerParameteri)                           \
+  X(PFNGLSAMPLERPARAMETERFVPROC, SamplerParameterfv)                         \
+  X(PFNGLBINDSAMPLERPROC, BindSampler)                                       \
   X(PFNGLDELETEFRAMEBUFFERSPROC, DeleteFramebuffers)                         \
   X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, NamedFramebufferTexture)               \
   X(PFNGLNAMEDFRAMEBUFFERTEXTURELAYERPROC, NamedFramebufferTextureLayer)     \
@@ -160,6 +165,11 @@ sh_status gs__gl_check(const char *what, sh_error *err);
 #define glTextureParameterfv gs__gl_current->TextureParameterfv
 #define glBindTextureUnit gs__gl_current->BindTextureUnit
 #define glCreateFramebuffers gs__gl_current->CreateFramebuffers
+#define glCreateSamplers gs__gl_current->CreateSamplers
+#define glDeleteSamplers gs__gl_current->DeleteSamplers
+#define glSamplerParameteri gs__gl_current->SamplerParameteri
+#define glSamplerParameterfv gs__gl_current->SamplerParameterfv
+#define glBindSampler gs__gl_current->BindSampler
 #define glDeleteFramebuffers gs__gl_current->DeleteFramebuffers
 #define glNamedFramebufferTexture gs__gl_current->NamedFramebufferTexture
 #define glNamedFramebufferTextureLayer gs__gl_current->NamedFramebufferTextureLayer

@@ -5,18 +5,38 @@
 
 #include "shaders/gs_shared.h"
 
-/* Texels an open caster's triangles grow by in its shadow map (the reach
- * of the bilinear lookup). */
-#define GS__SHADOW_DILATE 1.0
+/* Texels an open caster's triangles grow by in its shadow map: the reach of
+ * the bilinear lookup, whose farthest texel centre lies up to sqrt(2)
+ * texels from the lookup across an edge. At 1 texel, a floor point a
+ * quarter texel inside a wall's foot met an empty texel beyond it
+ * diagonally (surface_room.json). */
+#define GS__SHADOW_DILATE 1.5
 
 /* Deletes the texture and framebuffer, keeping the key's storage. */
 static void release_gl(gs__shadow_map *sm) {
   if (sm->fbo) glDeleteFramebuffers(1, &sm->fbo);
   if (sm->tex) glDeleteTextures(1, &sm->tex);
-  sm->fbo = sm->tex = 0;
+  if (sm->depth_sampler) glDeleteSamplers(1, &sm->depth_sampler);
+  sm->fbo = sm->tex = sm->depth_sampler = 0;
   sm->res = 0;
   sm->kind = GS__SHADOW_NONE;
   sm->key.valid = 0;
+}
+
+/* The filtering and wrapping of a map's reads, set through a texture's or
+ * a sampler object's setters (the same signatures): bilinear, and outside
+ * a 2D map depth 0, infinitely far; `compare` adds the depth comparison. */
+static void set_reads(PFNGLTEXTUREPARAMETERIPROC seti, PFNGLTEXTUREPARAMETERFVPROC setfv,
+                      GLuint obj, gs__shadow_kind kind, int compare) {
+  seti(obj, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  seti(obj, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  seti(obj, GL_TEXTURE_COMPARE_MODE, compare ? GL_COMPARE_REF_TO_TEXTURE : GL_NONE);
+  if (compare) seti(obj, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
+  GLint wrap = kind == GS__SHADOW_2D ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE;
+  seti(obj, GL_TEXTURE_WRAP_S, wrap);
+  seti(obj, GL_TEXTURE_WRAP_T, wrap);
+  const float border[4] = {0, 0, 0, 0};
+  if (kind == GS__SHADOW_2D) setfv(obj, GL_TEXTURE_BORDER_COLOR, border);
 }
 
 static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
@@ -28,19 +48,11 @@ static sh_status alloc_map(gs__shadow_map *sm, gs__shadow_kind kind, int res,
   /* Bilinear filtering of the comparisons (2x2 percentage-closer
    * filtering) measured closer to the reference's hard shadows than
    * nearest-texel comparison (docs/gl_shafts.md). */
-  glTextureParameteri(sm->tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(sm->tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(sm->tex, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-  glTextureParameteri(sm->tex, GL_TEXTURE_COMPARE_FUNC, GL_GEQUAL);
-  if (kind == GS__SHADOW_2D) {
-    const float border[4] = {0, 0, 0, 0}; /* depth 0: infinitely far */
-    glTextureParameteri(sm->tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glTextureParameteri(sm->tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glTextureParameterfv(sm->tex, GL_TEXTURE_BORDER_COLOR, border);
-  } else {
-    glTextureParameteri(sm->tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(sm->tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  }
+  set_reads(glTextureParameteri, glTextureParameterfv, sm->tex, kind, 1);
+  /* The same texture read as filtered depths, with no comparison
+   * (common.glsl, shadow_behind). */
+  glCreateSamplers(1, &sm->depth_sampler);
+  set_reads(glSamplerParameteri, glSamplerParameterfv, sm->depth_sampler, kind, 0);
   glCreateFramebuffers(1, &sm->fbo);
   glNamedFramebufferDrawBuffer(sm->fbo, GL_NONE);
   glNamedFramebufferReadBuffer(sm->fbo, GL_NONE);
@@ -187,8 +199,11 @@ sh_status gs__shadow_update(gs__shadow_map *sm, const gs__frame *fr,
 }
 
 void gs__shadow_bind(const gs__shadow_map *sm) {
-  glBindTextureUnit(sm->kind == GS__SHADOW_CUBE ? GS_UNIT_SHADOW_CUBE : GS_UNIT_SHADOW_2D,
-                    sm->tex);
+  int cube = sm->kind == GS__SHADOW_CUBE;
+  glBindTextureUnit(cube ? GS_UNIT_SHADOW_CUBE : GS_UNIT_SHADOW_2D, sm->tex);
+  GLuint depth_unit = cube ? GS_UNIT_SHADOW_DEPTH_CUBE : GS_UNIT_SHADOW_DEPTH_2D;
+  glBindTextureUnit(depth_unit, sm->tex);
+  glBindSampler(depth_unit, sm->depth_sampler);
 }
 
 void gs__shadow_free(gs__shadow_map *sm) {

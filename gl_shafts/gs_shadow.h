@@ -30,6 +30,7 @@ typedef struct gs__shadow_map {
   gs__shadow_kind kind;
   int res;
   GLuint tex, fbo;
+  GLuint depth_sampler; /* tex read as depths (common.glsl, shadow_behind) */
   gs__shadow_key key;         /* what the texture holds */
 } gs__shadow_map;
 

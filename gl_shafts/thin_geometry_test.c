@@ -30,6 +30,14 @@ static const char *const BLACK[] = {
     "closed_room_sun_grazing", "closed_room_far", "spot_blocked",
     "spot_blocked_near", "light_in_box",       "light_in_quads"};
 
+/* The closed room with no medium (surfaces only): its sizes, lights and
+ * positions (make_variants.py, surface_rooms). */
+static const char *const SURFACE[] = {
+    "surface_room",           "surface_room_sun_behind", "surface_room_sun_grazing",
+    "surface_room_sun_corner", "surface_room_sun_below", "surface_room_small",
+    "surface_room_long",      "surface_room_tall",      "surface_room_spot",
+    "surface_room_point",     "surface_room_far"};
+
 static sh_scene *load(const char *name) {
   return sh_test_load("testdata/hard_cases/%s.json", name);
 }
@@ -89,6 +97,20 @@ int main(void) {
    * map's outline. */
   check_black("closed_room", 96, 72, 0);
   check_black("closed_room", 96, 72, 1);
+
+  /* The room with no medium: floor points within a texel of a grazing
+   * wall's foot (0.0008 from the wall, 0.005 behind it along the light)
+   * took light, two pixels up to 0.058 at 96 x 72 in the handed room, 1
+   * to 22 pixels at 64, 96 or 192 pixels wide in every variant: the
+   * floor, not in the map, read it through a filtered lookup whose texels
+   * reach where the steep wall's depth is beyond the point. A surface not
+   * drawn open into the map now counts as lit only when all four texels
+   * say so, as the medium does (surface.frag). */
+  for (size_t i = 0; i < sizeof SURFACE / sizeof SURFACE[0]; i++) {
+    check_black(SURFACE[i], 64, 48, 0);
+    check_black(SURFACE[i], 96, 72, 0);
+    check_black(SURFACE[i], 192, 144, 0);
+  }
 
   /* The room with a 1 x 1 window: 7.0% before, 5.4% now, most of it where
    * a slab's part of a ray crosses the shaft between two shadowed ends

@@ -95,6 +95,8 @@ layout(binding = GS_UNIT_MAP) uniform sampler2D u_map;
 
 layout(binding = GS_UNIT_SHADOW_2D) uniform sampler2DShadow u_shadow2d;
 layout(binding = GS_UNIT_SHADOW_CUBE) uniform samplerCubeShadow u_shadowcube;
+layout(binding = GS_UNIT_SHADOW_DEPTH_2D) uniform sampler2D u_shadow2d_depth;
+layout(binding = GS_UNIT_SHADOW_DEPTH_CUBE) uniform samplerCube u_shadowcube_depth;
 
 // The unnormalised direction (d . u_fwd = 1) of the ray through a point of
 // the drawn window's NDC, and through a fragment's centre.
@@ -298,3 +300,31 @@ vec3 sun_disk(vec3 d, vec4 dir_chord2, vec3 radiance) {
 #ifndef SUN_DISKS
 #define SUN_DISKS(d) vec3(0.0)
 #endif
+
+// Whether p lies behind the surface that the four texels of its lookup
+// hold, all four of them a caster: the stored depths interpolated with the
+// filter's own weights (affine in the map for a plane, so exact for one
+// caster's plane) against p's, by 1e-6 of it (VOLUME_MARGIN's 1e-4 missed
+// a floor point 1e-4 behind a wall the light faces, 2e-5 of its depth). A
+// filtered comparison of a point just behind a caster that the light
+// grazes meets texels a texel away where the caster's steep depth lies
+// beyond the point, and calls it partly lit (surface.frag); the
+// interpolated depth does not.
+const float BEHIND_MARGIN = 1.0 - 1e-6;
+bool shadow_behind(vec3 p) {
+#if SHADOW == GS_SHADOW_2D
+  vec3 c = shadow_coord(u_shadow_mat * vec4(p, 1.0));
+  vec4 texels = textureGather(u_shadow2d_depth, c.xy);
+  float held = texture(u_shadow2d_depth, c.xy).r;
+  return all(greaterThan(texels, vec4(0.0))) && c.z < held * BEHIND_MARGIN;
+#elif SHADOW == GS_SHADOW_CUBE
+  vec3 d = p - u_lpos;
+  vec3 a = abs(d);
+  vec4 texels = textureGather(u_shadowcube_depth, d);
+  float held = texture(u_shadowcube_depth, d).r;
+  return all(greaterThan(texels, vec4(0.0))) &&
+         u_shadow_near / max(a.x, max(a.y, a.z)) < held * BEHIND_MARGIN;
+#else
+  return false;
+#endif
+}

@@ -55,6 +55,10 @@
 #define GS_UNIT_LINDEPTH 5    /* the surfaces' view depth, u_lindepth */
 #define GS_UNIT_ATMO 6        /* the atmosphere's optical depths, u_table */
 #define GS_UNIT_ATMO_LATTICE 7 /* the sky's lattice, u_lattice */
-#define GS_UNIT_FREE 8
+/* The shadow map again, through a sampler that returns its stored depths
+ * filtered (no comparison): u_shadow2d_depth, u_shadowcube_depth. */
+#define GS_UNIT_SHADOW_DEPTH_2D 8
+#define GS_UNIT_SHADOW_DEPTH_CUBE 9
+#define GS_UNIT_FREE 10
 
 #endif

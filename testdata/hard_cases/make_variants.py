@@ -33,8 +33,9 @@ def moved(scene, off):
     add = lambda p: [a + b for a, b in zip(p, off)]
     s["camera"]["position"] = add(s["camera"]["position"])
     s["camera"]["look_at"] = add(s["camera"]["look_at"])
-    b = s["medium"]["bounds"]
-    b["min"], b["max"] = add(b["min"]), add(b["max"])
+    if "medium" in s:
+        b = s["medium"]["bounds"]
+        b["min"], b["max"] = add(b["min"]), add(b["max"])
     for shape in s["shapes"]:
         shape["corner"] = add(shape["corner"])
     return s
@@ -96,6 +97,51 @@ def main():
     s = box_scene(faces)
     s["lights"] = light
     save("light_in_quads.json", s)
+    surface_rooms(room)
+
+
+def scaled_room(room, size):
+    """The closed room (surfaces only) with its walls spanning size (x, y,
+    z) from its floor's centre, the camera kept inside at the same
+    fractions."""
+    s = copy.deepcopy(room)
+    del s["medium"]
+    k = [size[0] / 4.0, size[1] / 3.0, size[2] / 4.0]
+    scale = lambda p: [p[0] * k[0], p[1] * k[1], p[2] * k[2]]
+    s["camera"]["position"] = scale(s["camera"]["position"])
+    s["camera"]["look_at"] = scale(s["camera"]["look_at"])
+    for shape in s["shapes"]:
+        for key in ("corner", "u", "v"):
+            shape[key] = scale(shape[key])
+    return s
+
+
+def surface_rooms(room):
+    """The closed room without a medium (surfaces only; issue 11's leftover:
+    two floor pixels at a grazing wall's foot took light), in other sizes,
+    lit by the sun from other directions, by a spot and a point light
+    outside, and far from the origin."""
+    base = scaled_room(room, [4, 3, 4])
+    save("surface_room.json", base)
+    for name, direction in [("sun_behind", [0.6, -0.7, -0.4]),
+                            ("sun_grazing", [-1, -0.08, 0.03]),
+                            ("sun_corner", [-0.7, -0.2, 0.7]),
+                            ("sun_below", [-1, 0.45, 0.15])]:
+        s = copy.deepcopy(base)
+        s["lights"][0]["direction"] = direction
+        save("surface_room_%s.json" % name, s)
+    for name, size in [("small", [0.5, 0.4, 0.5]), ("long", [12, 3, 2]),
+                       ("tall", [2, 9, 3])]:
+        save("surface_room_%s.json" % name, scaled_room(room, size))
+    s = copy.deepcopy(base)
+    s["lights"] = [{"type": "spot", "position": [6, 4.5, -1], "look_at": [0, 0, 0],
+                    "intensity": [80, 80, 80], "outer_angle_deg": 40}]
+    save("surface_room_spot.json", s)
+    s = copy.deepcopy(base)
+    s["lights"] = [{"type": "point", "position": [3, 3.6, -2.6],
+                    "intensity": [40, 40, 40]}]
+    save("surface_room_point.json", s)
+    save("surface_room_far.json", moved(base, [1000, 500, -1000]))
 
 
 if __name__ == "__main__":

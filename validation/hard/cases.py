@@ -341,6 +341,9 @@ CASES = [
          "beam is thinner than a pixel (issue 11, kind 1)", _handed("narrow_spot")),
     Case("closed_room", "a closed room of zero-thickness walls, the sun outside, the "
          "camera inside: black (issue 11, kind 2)", _handed("closed_room"), black=True),
+    Case("surface_room", "the closed room with no medium (surfaces only): black; "
+         "a floor at the foot of a wall the sun grazes took light", _handed("surface_room"),
+         black=True),
     Case("window_room", "the closed room with a 1 x 1 window in its sunlit wall: a "
          "shaft through it", _handed("window_room")),
     Case("spot_blocked", "a plate 0.005 below a spot blocks its whole cone: black",
