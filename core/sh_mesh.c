@@ -19,6 +19,7 @@
 #include "sh_assimp.h"
 #include "sh_confine.h"
 #include "sh_file.h"
+#include "sh_ply.h"
 
 void sh_mesh_free(sh_mesh *mesh) {
   if (!mesh)
@@ -138,13 +139,73 @@ static char *dir_of(const char *path) {
   return d;
 }
 
+/* A PLY file goes to sh_ply.h's reader, never to assimp's (which loops
+ * forever on some files): *handled is set if `path` starts as a PLY file
+ * does, and the status is then the load's. */
+static sh_status load_ply(const char *path, const char *root, long long size,
+                          sh_mesh *mesh, int *handled, sh_error *err) {
+  *handled = 0;
+  FILE *f = sh_file_open_read(path);
+  if (!f)
+    return sh_error_set(err, SH_ERR_IO, "cannot open mesh '%s': %s", path,
+                        strerror(errno));
+  unsigned char head[64];
+  size_t n = fread(head, 1, sizeof head, f);
+  if (!sh__ply_magic(head, n)) {
+    fclose(f);
+    return SH_OK;
+  }
+  *handled = 1;
+  char *own_root = root ? NULL : dir_of(path);
+  if (!root && !own_root) {
+    fclose(f);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  int inside = sh__confined(path, root ? root : own_root, NULL);
+  if (inside == 0) {
+    sh_status st = sh_error_set(
+        err, SH_ERR_MESH,
+        "the mesh '%s' lies outside the scene's directory '%s': files a scene "
+        "uses must lie in its directory tree",
+        path, root ? root : own_root);
+    free(own_root);
+    fclose(f);
+    return st;
+  }
+  free(own_root);
+  char *data = size >= 0 && (unsigned long long)size < SIZE_MAX
+                   ? malloc((size_t)size + 1)
+                   : NULL;
+  if (!data) {
+    fclose(f);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory for mesh '%s'", path);
+  }
+  rewind(f);
+  size_t got = fread(data, 1, (size_t)size, f);
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(data);
+    return sh_error_set(err, SH_ERR_IO, "cannot read mesh '%s'", path);
+  }
+  data[got] = '\0';
+  sh_status st = sh__ply_read(path, data, got, mesh, err);
+  free(data);
+  return st;
+}
+
 sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
                        sh_error *err) {
   /* assimp reports a missing file like any other failure: tell them apart
    * first. */
+  long long size = 0;
   sh_status rs = sh__file_load_begin("sh_mesh_load", "mesh", mesh, sizeof *mesh,
-                                     path, NULL, err);
+                                     path, &size, err);
   if (rs != SH_OK)
+    return rs;
+  int handled;
+  rs = load_ply(path, root, size, mesh, &handled, err);
+  if (handled || rs != SH_OK)
     return rs;
 
   const sh__assimp *ai = sh__assimp_get(path, err);

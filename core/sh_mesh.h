@@ -23,9 +23,11 @@ typedef struct sh_mesh {
 /* Frees the arrays and zeroes the struct; safe on a zeroed struct. */
 void sh_mesh_free(sh_mesh *mesh);
 
-/* Loads every mesh of a file that assimp reads (OBJ, PLY, glTF, ...), node
+/* Loads every mesh of a file that assimp reads (OBJ, glTF, STL, ...), node
  * transforms applied, triangulated, into one mesh (caller frees with
- * sh_mesh_free). Every file the load opens (the mesh, an OBJ's material
+ * sh_mesh_free). A PLY file (one whose first non-blank bytes are "ply") is
+ * read by sh_ply.h's reader instead, never by assimp's (which loops
+ * forever on some files). Every file the load opens (the mesh, an OBJ's material
  * library, a glTF's buffers) must resolve inside the directory `root` (NULL:
  * the mesh's own directory); a file outside it is refused (sh_confine.h).
  * A missing file is SH_ERR_IO; an unreadable one, one with no triangles,

@@ -70,6 +70,27 @@ def _many_lights(d):
     return [str(scene), "-o", str(scene.parent / "out.exr")]
 
 
+KNOWN = Path(__file__).resolve().parents[2] / "fuzz" / "known"
+
+
+def _ply(d, data):
+    scene = _scene(d, shapes=SCENE["shapes"] + [{"type": "mesh", "material": "m",
+                                                  "file": "m.ply"}])
+    (scene.parent / "m.ply").write_bytes(data)
+    return [str(scene), "-o", str(scene.parent / "out.exr")]
+
+
+def _ply_hang(d):
+    """fuzz/known/ply_hang without its first byte (the harness's format
+    pick): a PLY header with no end_header line."""
+    return _ply(d, (KNOWN / "ply_hang").read_bytes()[1:])
+
+
+def _ply_count(d):
+    return _ply(d, b"ply\nformat ascii 1.0\nelement vertex 2000000000\nproperty float x\n"
+                b"property float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n")
+
+
 @dataclass
 class InputCase:
     name: str
@@ -93,6 +114,12 @@ INPUT_CASES = [
     InputCase("too_many_lights", 7, "257 point lights: more than gl_shafts' stated limit, "
               "refused with the count and the limit", _many_lights,
               "gl_shafts renders at most 256", only=("gl_shafts",)),
+    InputCase("ply_hang", 8, "a PLY mesh whose header has no end_header line (fuzz/known/"
+              "ply_hang, on which assimp's reader looped forever): refused at once, located",
+              _ply_hang, "line 7: unknown header keyword 'e'"),
+    InputCase("ply_count", 8, "a PLY mesh declaring 2e9 vertices in 200 bytes (assimp: 2 GB "
+              "in 10 s and on): refused at once with the count", _ply_count,
+              "declares 2000000000 instances"),
 ]
 
 
