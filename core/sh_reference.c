@@ -149,20 +149,22 @@ static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng) {
   sh_hit h;
   int hit = sh_rt_intersect(w->job->rt, o, d, 0.0, INFINITY, &h, &w->counters);
   double tend = hit ? h.t : INFINITY;
+  /* The medium ends on this side of the surface (sh_rt_free_end). */
+  double tfree = hit ? sh_rt_free_end(w->job->rt, o, d, &h) : INFINITY;
   const sh_medium *m = &scene->medium;
   double tg;
   sh_vec3 L;
   if (sh_medium_ground_hit(m, o, d, tend, &tg)) {
     /* The ground (double precision about the planet's centre) is nearer
      * than every surface. */
-    tend = tg;
+    tfree = tg;
     L = shade_ground(w, sh_madd(o, d, tg));
   } else {
     L = hit ? shade(w, &h, d, depth, rng)
             : sh_scene_background_radiance(scene, d);
   }
   double t0, t1;
-  if (sh_medium_clip(m, o, d, 0.0, tend, &t0, &t1)) {
+  if (sh_medium_clip(m, o, d, 0.0, tfree, &t0, &t1)) {
     L = sh_mul(L, sh_medium_transmittance_span(m, o, d, t0, t1));
     for (int i = 0; i < scene->nlights; i++)
       L = sh_add(L, sh_inscatter_light(scene, w->job->rt, w->job->opt->hook,

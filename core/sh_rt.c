@@ -580,3 +580,16 @@ sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n) {
                 offset_float((float)q.z, (float)n.z)};
   return from_frame(rt, f);
 }
+
+double sh_rt_free_end(const sh_rt *rt, sh_vec3 o, sh_vec3 d, const sh_hit *hit) {
+  double dn = sh_dot(d, hit->ng);
+  if (dn == 0) return hit->t;
+  /* The normal facing the ray's origin, and the offset's distance along
+   * it. */
+  sh_vec3 n = dn < 0 ? hit->ng : sh_neg(hit->ng);
+  double margin = sh_dot(sh_sub(sh_rt_offset(rt, hit->p, n), hit->p), n);
+  /* The tangent plane's distance along the ray, in double precision. */
+  double t = sh_dot(sh_sub(hit->p, o), hit->ng) / dn;
+  t -= fmax(margin, 0.0) / fabs(dn);
+  return fmax(fmin(t, hit->t), 0.0);
+}

@@ -114,6 +114,18 @@ unsigned sh_rt_classes(const sh_rt *rt);
  * ch. 6). */
 sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n);
 
+/* The end of the ray o + t d's free part before `hit` (found by
+ * sh_rt_intersect on that ray): the largest t whose point lies on the
+ * ray's side of the hit surface by at least sh_rt_offset's distance. The
+ * hit's own t comes from Embree's single-precision distance and may lie
+ * beyond the surface, so that a point sampled at it (a medium's in-scatter
+ * at the segment's end) is on the far side, inside a closed shape, and its
+ * shadow ray reaches a light the surface should hide. The distance is
+ * measured along the normal to the hit point's tangent plane, so a
+ * grazing ray loses at most a sliver that close to the surface. Never
+ * below 0. */
+double sh_rt_free_end(const sh_rt *rt, sh_vec3 o, sh_vec3 d, const sh_hit *hit);
+
 #ifdef __cplusplus
 }
 #endif
