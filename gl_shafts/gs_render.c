@@ -190,6 +190,25 @@ static sh_status sync_maps(gs_renderer *r, sh_error *err) {
   return st;
 }
 
+/* The light limit (GS_MAX_LIGHTS), at the scene's key "lights": checked
+ * where a renderer is made and where a live one takes a changed scene. */
+static sh_status check_light_count(const sh_scene *scene, sh_error *err) {
+  if (scene->nlights <= GS_MAX_LIGHTS) return SH_OK;
+  sh_status st = sh_error_set(err, SH_ERR_SCENE,
+                              "%d lights: gl_shafts renders at most %d (each light "
+                              "costs its own surface pass and plane sweep, and the "
+                              "cost grows faster than the count: 100 point lights "
+                              "took 1.9 s at 32x24, 1000 took 878 s; "
+                              "docs/gl_shafts.md, 'Limits'); lmm_tracer has no such "
+                              "limit",
+                              scene->nlights, GS_MAX_LIGHTS);
+  if (err) {
+    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+    snprintf(err->path, sizeof err->path, "lights");
+  }
+  return st;
+}
+
 sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
                              gs_renderer **out, sh_error *err) {
   *out = NULL;
@@ -203,22 +222,7 @@ sh_status gs_renderer_create(const sh_scene *scene, const gs_options *opt,
       (st = sh_crop_check(&opt->crop, &scene->camera, err)) != SH_OK ||
       (st = gs__medium_check(scene, err)) != SH_OK)
     return st;
-  if (scene->nlights > GS_MAX_LIGHTS) {
-    st = sh_error_set(err, SH_ERR_SCENE,
-                      "%d lights: gl_shafts renders at most %d (each light "
-                      "costs its own surface pass and plane sweep, and the "
-                      "cost grows faster than the count: 100 point lights "
-                      "took 1.9 s at 32x24, 1000 took 878 s; "
-                      "docs/gl_shafts.md, 'Limits'); lmm_tracer has no such "
-                      "limit",
-                      scene->nlights, GS_MAX_LIGHTS);
-    if (err) {
-      snprintf(err->file, sizeof err->file, "%s",
-               scene->file ? scene->file : "");
-      snprintf(err->path, sizeof err->path, "lights");
-    }
-    return st;
-  }
+  if ((st = check_light_count(scene, err)) != SH_OK) return st;
   gs_renderer *r = calloc(1, sizeof *r);
   if (!r) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   r->scene = scene;
@@ -291,6 +295,8 @@ static sh_status sync(gs_renderer *r, unsigned changed, sh_error *err) {
 }
 
 sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
+  sh_status lim = check_light_count(r->scene, err);
+  if (lim != SH_OK) return lim;
   if (r->scene->nlights != r->nlights)
     return sh_error_set(err, SH_ERR_ARG,
                         "the scene's lights changed in number (%d, was %d): "

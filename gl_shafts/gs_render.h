@@ -205,7 +205,9 @@ sh_status gs_renderer_draw(gs_renderer *r, float *rgb, gs_stats *stats,
  * entering or leaving the medium's box, a light gaining its first shadow
  * caster or losing its last; each builds once, after which both variants
  * are cached; stats.programs_compiled counts them). The scene must keep its
- * number of lights and shapes (SH_ERR_ARG otherwise: make a new renderer).
+ * number of lights and shapes (SH_ERR_ARG otherwise: make a new renderer);
+ * more than GS_MAX_LIGHTS lights is SH_ERR_SCENE at the key "lights", as
+ * in gs_renderer_create.
  * On error the renderer must be freed. */
 sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err);
 
