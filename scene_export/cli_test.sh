@@ -132,6 +132,38 @@ empty "refused exports" "$out"
 check "approximation without --strict" 0 $?
 grep -q "warning:.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: no warning"; fail=1; }
 grep -q "Henyey-Greenstein" "$out/h.blender.json" || { echo "FAIL: no note in the data"; fail=1; }
+# A scene beyond what Cycles' single precision holds (about 1e-6 to 1e5
+# units in radius; docs/scene_export.md, "Precision"): lambert_floor.json
+# (exact for Blender) scaled by 1e-9 and by 1e7 is refused by --strict with
+# nothing written, and exported with a warning and a note without it.
+sc=$dir/scaled_out
+mkdir -p "$sc"
+for k in 1e-9 1e7; do
+  python3 - "$data/lambert_floor.json" "$dir/scaled.json" "$k" <<'PY'
+import json, sys
+s, k = json.load(open(sys.argv[1])), float(sys.argv[3])
+def walk(o, key=""):
+    if isinstance(o, dict):
+        return {a: walk(b, a) for a, b in o.items()}
+    if isinstance(o, list):
+        return [walk(b, key) for b in o]
+    if isinstance(o, (int, float)) and key in ("position", "look_at", "corner", "u", "v", "center",
+                                               "min", "max", "radius"):
+        return o * k
+    return o
+json.dump(walk(s), open(sys.argv[2], "w"))
+PY
+  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" --strict 2>"$dir/err"
+  check "--strict, a scene scaled by $k" 2 $?
+  grep -q "strict: the scene is .* units across.*single precision" "$dir/err" \
+    || { echo "FAIL: --strict scale message: $(cat "$dir/err")"; fail=1; }
+  empty "the refused scaled export" "$sc"
+  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" 2>"$dir/err"
+  check "a scene scaled by $k without --strict" 0 $?
+  grep -q "warning: the scene is .* units across" "$dir/err" || { echo "FAIL: no scale warning"; fail=1; }
+  grep -q "single precision" "$sc/s.blender.json" || { echo "FAIL: no scale note in the data"; fail=1; }
+  rm -f "$sc"/*
+done
 # A spot narrower than Blender's 1-degree spot_size (issue 11, a laser): a
 # note, and --strict refuses; POV-Ray's spotlight holds any cone.
 sed 's/"outer_angle_deg": 30, "inner_angle_deg": 20/"outer_angle_deg": 0.3/' \
