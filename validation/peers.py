@@ -84,8 +84,14 @@ BOUNDS = {
 #  height_fog_cs: the Cornette-Shanks phase (g 0.7) as the Henyey-Greenstein
 #    lobe of its mean cosine (0.757) in POV-Ray: measured mean_rel 0.054,
 #    ratio 0.973 (the phase's own error: up to 37%, RMS 19% over cos).
+#  sun_disk in Cycles: the disk (a few pixels, far brighter than the sky)
+#    dominates the image's sum, and Cycles' samples of its edge pixels
+#    carry the noise (mean_rel 3.2% against a two-seed noise of 6.8%): the
+#    ratio moved by 1.4% between CI runs at 128 spp (0.9863), so it gets
+#    the noise bound's room too.
 SCENE_BOUNDS = {
     ("height_fog_cs", "pov"): {"mean_rel": 0.08, "ratio": 0.05},
+    ("sun_disk", "cycles"): {"mean_rel": "noise+0.005", "ratio": 0.03},
 }
 
 # The settings of each target: POV-Ray's draft media sampling (200
