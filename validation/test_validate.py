@@ -236,6 +236,15 @@ class HardCasesTest(unittest.TestCase):
                          hard_bounds.bound_for("gl_shafts", "user", "base", "quick"))
         self.assertIsNone(hard_bounds.bound_for("eevee", "user", "base", "full"))
         self.assertIsNone(hard_bounds.bound_for("unknown", "user", "base", "full"))
+        # Black cases: 0 unless stated, and only black cases are stated.
+        self.assertEqual(hard_bounds.black_bound("lmm_tracer", "light_in_box"), 0.0)
+        self.assertEqual(hard_bounds.black_bound("gl_shafts", "closed_room"), 0.0)
+        self.assertEqual(hard_bounds.black_bound("povray", "closed_room"), 2e-4)
+        from .hard import cases as hard_cases
+        black = {c.name for c in hard_cases.CASES if c.black}
+        for (_, case), (b, why) in hard_bounds.BLACK_BOUNDS.items():
+            self.assertIn(case, black)
+            self.assertTrue(b > 0 and why)
 
 
 def fake_results(tmp):
