@@ -75,10 +75,17 @@ sh_status gs__shadow_render(gs__shadow_map *sm, const gs__frame *fr,
                          &prog[k], err);
   if (st != SH_OK) return st;
   /* Two depths far apart along each texel's ray, for the exact spheres:
-   * the near plane and 1/1000 of it (a thousand near distances away) for
-   * perspective maps, both ends of an orthographic one. */
-  double d0 = 1.0, d1 = ls->shadow == GS__SHADOW_2D && ls->light->type ==
-                                SH_LIGHT_DIRECTIONAL ? 0.0 : 1e-3;
+   * the near plane and the scene's diagonal away for perspective maps (the
+   * near plane is 1e-10 of it, gs_lightvol.c: a thousand near distances
+   * were 1e-7 of the scene, and the ray's direction between two points
+   * that near the light was lost in float), both ends of an orthographic
+   * one. */
+  sh_vec3 lo, hi;
+  sh_scene_bounds(fr->scene, &lo, &hi);
+  double size = sh_length(sh_sub(hi, lo));
+  double d0 = 1.0, d1 = ls->shadow == GS__SHADOW_2D && ls->light->type == SH_LIGHT_DIRECTIONAL
+                            ? 0.0
+                            : ls->shadow_near / (size > 0 ? size : 1.0);
   glViewport(0, 0, res, res);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);

@@ -86,13 +86,27 @@ static sh_status draw_shapes(const gs__frame *fr, const gs__geometry *geom,
       if (sphere) {
         /* Both sides of the covering mesh would give the same sphere
          * point (added twice in the blended passes): draw the side that
-         * faces the camera, the inside if the camera is in the sphere. */
+         * faces the camera, the inside if the camera may be inside the
+         * covering mesh (it lies up to r (inflate - 1) outside the sphere:
+         * an eye 1 m above a planet's ground is inside it, and saw no
+         * ground). The far side covers every pixel the sphere does, once. */
         const sh_shape *sh = &scene->shapes[i];
         sh_vec3 eye = sh_xform_point(&sh->inv, fr->view->frame.origin);
-        int inside = sh_length(sh_sub(eye, sh->center)) < sh->radius;
+        double eye_r = sh_length(sh_sub(eye, sh->center));
+        int inside = eye_r < sh->radius * s->inflate;
         glEnable(GL_CULL_FACE);
         glCullFace(inside != s->mirrored ? GL_FRONT : GL_BACK);
         sh_mat4 obj_inv = gs__sphere_from_anchored(fr->view, sh);
+        /* |oc|^2 - r^2 at the rays' origin at depth zref (gs_view.h) in
+         * double, of relative precision where the eye is near the surface
+         * (in float, r^2 - |f|^2 of a planet's radius kept 4e6 of its
+         * 1.3e7 m^2 for an eye 1 m above the ground); there surface.frag
+         * solves with it, elsewhere about the ray's point nearest the
+         * centre. */
+        sh_vec3 oc0 = sh_xform_point(&obj_inv, fr->view->org);
+        double r0 = sh_length(oc0);
+        gs__uniform_f(prog, "u_sphere_c0", (r0 - sh->radius) * (r0 + sh->radius));
+        gs__uniform_f(prog, "u_sphere_near", eye_r < 4.0 * sh->radius ? 1.0 : 0.0);
         gs__uniform_mat4(prog, "u_obj_inv", &obj_inv);
         gs__uniform_v3(prog, "u_center", sh_v3s(0.0)); /* centred space */
         gs__uniform_f(prog, "u_radius", sh->radius);

@@ -1,5 +1,35 @@
 #include "gs_view.h"
 
+/* How near the eye the nearest surface may be (gs__view_init's anchor): for a sphere its distance
+ * from the surface, for other shapes from their world box (from inside,
+ * from the box's nearest face). INFINITY without shapes. */
+static double eye_clearance(const sh_scene *scene, sh_vec3 eye) {
+  double d = INFINITY;
+  for (int i = 0; i < scene->nshapes; i++) {
+    const sh_shape *s = &scene->shapes[i];
+    if (s->type == SH_SHAPE_SPHERE) {
+      /* In object space, along the centre's direction scaled to the world
+       * (a transformed sphere's distance, near enough). */
+      sh_vec3 e = sh_sub(sh_xform_point(&s->inv, eye), s->center);
+      double er = sh_length(e);
+      double k = er > 0 ? sh_length(sh_xform_vector(&s->xform, sh_scale(e, 1.0 / er))) : 1.0;
+      d = fmin(d, fabs(er - s->radius) * k);
+      continue;
+    }
+    sh_vec3 lo, hi;
+    if (!sh_shape_bounds(s, &lo, &hi)) continue;
+    double out = 0, in = INFINITY;
+    for (int k = 0; k < 3; k++) {
+      double x = sh_vget(eye, k), a = sh_vget(lo, k), b = sh_vget(hi, k);
+      double o = fmax(fmax(a - x, x - b), 0.0);
+      out += o * o;
+      in = fmin(in, fmin(x - a, b - x));
+    }
+    d = fmin(d, out > 0 ? sqrt(out) : in);
+  }
+  return d;
+}
+
 void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop) {
   const sh_camera *cam = &scene->camera;
   sh_camera_frame_init(cam, &v->frame);
@@ -20,9 +50,24 @@ void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop) {
   sh_vec3 lo, hi;
   sh_scene_bounds(scene, &lo, &hi);
   double size = sh_length(sh_sub(hi, lo));
-  v->znear = 1e-5 * (size > 0 ? size : 1.0);
+  /* znear / z keeps its relative precision at any znear: tiny against the
+   * scene (1e-5 of a planet's bounds was 180 m, and an eye 1 m above the
+   * ground saw nothing of it). */
+  v->znear = 1e-10 * (size > 0 ? size : 1.0);
   double unit;
   sh_frame_fit(lo, hi, &v->anchor, &unit);
+  /* An eye so near a surface that the anchored space's ulp there exceeds
+   * 1e-3 of the distance (an eye 1 m above a planet's ground, 6.4e6 m from
+   * the anchor, had 0.5 m: the lit ground's edge moved by rows) gets an
+   * anchor of its own: the eye quantised to the power of two at or above
+   * 1024 times that distance, so that it moves once the eye has travelled
+   * about that far (the triangles are then uploaded again). */
+  sh_vec3 eye = v->frame.origin;
+  double clear = eye_clearance(scene, eye);
+  if (isfinite(clear) && sh_length(sh_sub(eye, v->anchor)) > 1.6e4 * clear) {
+    double g = exp2(ceil(log2(fmax(clear, 1e-30 * (size > 0 ? size : 1.0)) * 1024.0)));
+    v->anchor = sh_v3(g * round(eye.x / g), g * round(eye.y / g), g * round(eye.z / g));
+  }
   /* The bounds' depth range, as the corners' offsets from the anchor's
    * depth (no cancellation for a camera far away). */
   double za = gs__view_depth(v, v->anchor), c0 = INFINITY, c1 = -INFINITY;

@@ -58,8 +58,8 @@ typedef struct gs__view {
 
 /* The scene's camera, of the window `crop` (NULL or all zero: the whole
  * image; it must have passed sh_crop_check); the near plane is set tiny
- * against the scene's size (float depth with reversed Z keeps its
- * precision), or at the scene's near end when all of it lies beyond that;
+ * against the scene's size (1e-10 of its bounds' diagonal: float depth
+ * with reversed Z keeps its relative precision), or at the scene's near end when all of it lies beyond that;
  * the anchor, zref, org and the depth mapping. */
 void gs__view_init(gs__view *v, const sh_scene *scene, const sh_crop *crop);
 

@@ -18,6 +18,10 @@ uniform float u_open;
 uniform mat4 u_obj_inv;
 uniform vec3 u_center;
 uniform float u_radius;
+// u_sphere_c0: |oc|^2 - r^2 at the ray origin u_org (in double on the CPU);
+// u_sphere_near: 1.0 to solve with it (the eye within 4 radii of the
+// centre), 0.0 to solve about the ray's point nearest the centre.
+uniform float u_sphere_c0, u_sphere_near;
 #endif
 layout(location = 0) out vec4 o_color;
 layout(location = 1) out vec4 o_depth;
@@ -55,16 +59,28 @@ void main() {
   // bit-identical in every pass, which the GL_EQUAL depth test relies on.
   vec3 oc = (u_obj_inv * vec4(o, 1.0)).xyz - u_center;
   vec3 od = (u_obj_inv * vec4(d, 0.0)).xyz;
-  // The discriminant B^2 - A (|oc|^2 - r^2) as A (r^2 - |f|^2), f the
-  // ray's point nearest to the centre: the first form cancels when the
-  // camera is far from the sphere (Haines et al., Ray Tracing Gems, ch. 7).
+  // Far from the sphere, the discriminant B^2 - A (|oc|^2 - r^2) as A (r^2 -
+  // |f|^2), f the ray's point nearest to the centre: the first form
+  // cancels when the camera is far from the sphere (Haines et al., Ray
+  // Tracing Gems, ch. 7). Near it, B^2 - A C with C = |oc|^2 - r^2 from
+  // u_sphere_c0 (plus the change from u_org to this ray's origin, zero
+  // for a camera in the scene) and the roots as q / A and C / q: r^2 and
+  // |f|^2 of a planet agree to a few ulps 1 m above its ground.
   precise float A = dot(od, od), B = dot(oc, od);
   precise vec3 f = oc - (B / A) * od;
-  precise float disc = A * (u_radius * u_radius - dot(f, f));
+  vec3 dw = u_zref * (u_rc + (gl_FragCoord.x * u_ndc_scale.x - 1.0) * u_rx +
+                      (gl_FragCoord.y * u_ndc_scale.y - 1.0) * u_uy);
+  vec3 dlt = mat3(u_obj_inv) * dw;
+  precise float C = u_sphere_c0 + dot(dlt, 2.0 * (oc - dlt) + dlt);
+  bool near_form = u_sphere_near > 0.5;
+  precise float disc = near_form ? B * B - A * C : A * (u_radius * u_radius - dot(f, f));
   if (disc < 0.0) discard;
-  precise float t = (-B - sqrt(disc)) / A;
+  precise float q = -(B + (B >= 0.0 ? sqrt(disc) : -sqrt(disc)));
+  precise float t0 = near_form ? min(q / A, C / q) : (-B - sqrt(disc)) / A;
+  precise float t1 = near_form ? max(q / A, C / q) : (-B + sqrt(disc)) / A;
+  precise float t = t0;
   precise float tnear = u_near - u_zref;
-  if (t < tnear) t = (-B + sqrt(disc)) / A; // the camera is inside
+  if (t < tnear) t = t1; // the camera is inside
   if (t < tnear) discard;
   precise float depth = (u_depth_ab.y - u_depth_ab.x * t) / (u_zref + t); // depth_at(t)
   gl_FragDepth = depth;
