@@ -55,6 +55,9 @@ typedef struct confined_fs {
   struct aiFileIO io;
   const char *root;
   char refused[512];
+  const char *mesh; /* the mesh's own path */
+  char **named;     /* the other files opened, resolved (NULL: not kept) */
+  int nnamed, failed;
 } confined_fs;
 
 static size_t fs_read(struct aiFile *f, char *buf, size_t size, size_t n) {
@@ -91,12 +94,34 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
   confined_fs *fs = (confined_fs *)(void *)io->UserData;
   if (!name || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
     return NULL;
-  int inside = sh__confined(name, fs->root, NULL);
+  char *resolved = NULL;
+  int inside = sh__confined(name, fs->root, &resolved);
   if (inside == 0) {
+    free(resolved);
     if (!fs->refused[0]) snprintf(fs->refused, sizeof fs->refused, "%s", name);
     return NULL;
   }
   if (inside < 0) return NULL; /* does not exist: assimp says so */
+  /* Every file other than the mesh itself is kept, for the outputs' check
+   * (a render must not overwrite what it reads). */
+  char *self = NULL;
+  int is_mesh = sh__confined(fs->mesh, fs->root, &self) >= 0 && self &&
+                !strcmp(self, resolved);
+  free(self);
+  int known = is_mesh;
+  for (int i = 0; i < fs->nnamed && !known; i++) known = !strcmp(fs->named[i], resolved);
+  if (!known) {
+    char **nn = realloc(fs->named, (size_t)(fs->nnamed + 1) * sizeof *nn);
+    if (!nn) {
+      fs->failed = 1;
+      free(resolved);
+      return NULL;
+    }
+    fs->named = nn;
+    fs->named[fs->nnamed++] = resolved;
+  } else {
+    free(resolved);
+  }
   FILE *fp = sh_file_open_read(name);
   if (!fp) return NULL;
   /* A FIFO or a device inside the tree would block or never end. */
@@ -194,8 +219,24 @@ static sh_status load_ply(const char *path, const char *root, long long size,
   return st;
 }
 
+static void free_named(char **named, int n) {
+  for (int i = 0; i < n; i++) free(named[i]);
+  free(named);
+}
+
 sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
                        sh_error *err) {
+  char **named = NULL;
+  int n = 0;
+  sh_status st = sh__mesh_load_named(path, root, mesh, &named, &n, err);
+  free_named(named, n);
+  return st;
+}
+
+sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
+                              char ***named, int *nnamed, sh_error *err) {
+  *named = NULL;
+  *nnamed = 0;
   /* assimp reports a missing file like any other failure: tell them apart
    * first. */
   long long size = 0;
@@ -221,6 +262,7 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
   fs.io.CloseProc = fs_close;
   fs.io.UserData = (aiUserData)(void *)&fs;
   fs.root = root ? root : own_root;
+  fs.mesh = path;
   const struct aiScene *scene = ai->import_file_ex(
       path,
       /* ValidateDataStructure first: Debian's assimp is built with its
@@ -231,7 +273,16 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
           aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
           aiProcess_SortByPType,
       &fs.io);
+  if (fs.failed) {
+    if (scene) ai->release_import(scene);
+    free_named(fs.named, fs.nnamed);
+    free(own_root);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
   if (fs.refused[0]) {
+    free_named(fs.named, fs.nnamed);
+    fs.named = NULL;
+    fs.nnamed = 0;
     /* Refused whether or not assimp went on without the file. */
     if (scene) ai->release_import(scene);
     sh_status st = sh_error_set(
@@ -243,6 +294,9 @@ sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
     return st;
   }
   free(own_root);
+  /* The caller owns the list from here, whatever follows. */
+  *named = fs.named;
+  *nnamed = fs.nnamed;
   if (!scene) {
     const char *msg = ai->get_error_string();
     return sh_error_set(err, SH_ERR_MESH, "cannot load mesh '%s': %s", path,

@@ -36,6 +36,14 @@ void sh_mesh_free(sh_mesh *mesh);
 sh_status sh_mesh_load(const char *path, const char *root, sh_mesh *mesh,
                        sh_error *err);
 
+/* sh_mesh_load, also giving the other files the load opened (an OBJ's
+ * material library, a glTF's buffers and images), resolved, in *named
+ * (malloc'ed, *nnamed of them; the caller frees each and the array, also
+ * on error). Internal to the core (the scene parser keeps them for
+ * sh_outputs.h's check that no output overwrites an input). */
+sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
+                              char ***named, int *nnamed, sh_error *err);
+
 /* Builds the heightfield of a grey image (its mean of R, G, B, clamped to
  * [0, 1], as height) spanning the box [bmin, bmax]: vertex (i, j) of the image's pixel
  * (column i, row j) sits at x = bmin.x + i/(w-1) * dx, z = bmin.z + j/(h-1)

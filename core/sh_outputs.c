@@ -211,9 +211,13 @@ sh_status sh_outputs_scene_inputs(sh_outputs *set, const sh_scene *scene,
       st = sh_outputs_input(set, scene->lights[i].map_file,
                             "a light map of the scene", err);
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++)
-    if (scene->shapes[i].file)
+    if (scene->shapes[i].file) {
       st = sh_outputs_input(set, scene->shapes[i].file,
                             "a file of the scene", err);
+      for (int k = 0; st == SH_OK && k < scene->shapes[i].nnamed; k++)
+        st = sh_outputs_input(set, scene->shapes[i].named[k],
+                              "a file a mesh of the scene names", err);
+    }
   return st;
 }
 

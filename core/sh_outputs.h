@@ -1,7 +1,9 @@
 /* The outputs of one run, written all together or not at all.
  *
  * A tool records the files it reads (sh_outputs_input: the scene, and with
- * sh_outputs_scene_inputs every mesh, heightfield and light map it names)
+ * sh_outputs_scene_inputs every mesh, heightfield and light map it names,
+ * and the files its meshes' loads read: an OBJ's material library, a
+ * glTF's buffers and images)
  * and the files it will write (sh_outputs_add). An output that is one of
  * the inputs or another output of the same run is refused before any work:
  * paths are compared once resolved (realpath(3) of an existing file, of the

@@ -4,6 +4,7 @@
  * no name in the directory until published (so a SIGKILL leaves nothing);
  * a run that fails leaves no output and keeps the old file's bytes. */
 #include "sh_outputs.h"
+#include "sh_parse.h"
 #include "sh_test.h"
 
 #include <dirent.h>
@@ -160,10 +161,60 @@ static void test_staging(void) {
   free(a), free(b), free(bad);
 }
 
+/* The files a scene's meshes name (a glTF's buffer, an OBJ's material
+ * library) are inputs too: -o naming one is refused (before, only the
+ * scene, its meshes, heightfields and light maps were). */
+static void test_mesh_files(void) {
+  char *bin = in_tmp("m.bin"), *gltf = in_tmp("m.gltf"), *obj = in_tmp("t.obj");
+  char *mtl = in_tmp("t.mtl"), *scene = in_tmp("meshes.json");
+  float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  FILE *f = fopen(bin, "wb");
+  if (f) {
+    fwrite(tri, sizeof tri, 1, f);
+    fclose(f);
+  }
+  put(gltf, "{\"asset\": {\"version\": \"2.0\"}, \"scene\": 0, \"scenes\": [{\"nodes\": [0]}],"
+            " \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\":"
+            " {\"POSITION\": 0}}]}], \"buffers\": [{\"byteLength\": 36, \"uri\": \"m.bin\"}],"
+            " \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}], \"accessors\":"
+            " [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\","
+            " \"min\": [0, 0, 0], \"max\": [1, 1, 0]}]}");
+  put(mtl, "newmtl grey\nKd 0.5 0.5 0.5\n");
+  put(obj, "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n");
+  put(scene, "{\"format\": \"shafts-scene\", \"version\": 1, \"camera\": {\"position\":"
+             " [0, 1, 5], \"look_at\": [0, 0, 0], \"fov_y_deg\": 45, \"width\": 8,"
+             " \"height\": 6}, \"lights\": [], \"materials\": {\"m\": {\"diffuse\":"
+             " [0.5, 0.5, 0.5]}}, \"shapes\": [{\"type\": \"mesh\", \"material\": \"m\","
+             " \"file\": \"m.gltf\"}, {\"type\": \"mesh\", \"material\": \"m\","
+             " \"file\": \"t.obj\"}]}");
+  sh_scene *s = NULL;
+  sh_error err;
+  sh_status st = sh_scene_load(scene, &s, &err);
+  if (st != SH_OK) fprintf(stderr, "  meshes.json: %s\n", err.message);
+  SH_CHECK(st == SH_OK);
+  if (s) {
+    const char *outs[2] = {bin, mtl};
+    for (int i = 0; i < 2; i++) {
+      sh_outputs *set = sh_outputs_new();
+      SH_CHECK(sh_outputs_scene_inputs(set, s, &err) == SH_OK);
+      st = sh_outputs_add(set, outs[i], "-o", &err);
+      if (st != SH_ERR_ARG)
+        fprintf(stderr, "  -o %s, a file a mesh names, was accepted\n", outs[i]);
+      SH_CHECK(st == SH_ERR_ARG && strstr(err.message, "must not overwrite an input") &&
+               strstr(err.message, "a file a mesh of the scene names"));
+      sh_outputs_free(set);
+    }
+    sh_scene_free(s);
+  }
+  unlink(bin), unlink(gltf), unlink(obj), unlink(mtl), unlink(scene);
+  free(bin), free(gltf), free(obj), free(mtl), free(scene);
+}
+
 int main(void) {
   if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_outputs_test")) return 1;
   umask(022);
   test_refusals();
+  test_mesh_files();
   test_staging();
   rmdir(tmpdir);
   printf("%d checks, %d failed\n", sh_test_checks, sh_test_failures);

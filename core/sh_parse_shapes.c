@@ -194,7 +194,7 @@ static sh_status parse_mesh_file(sh__parser *p, json_t *o, sh_shape *sh) {
   /* The files the mesh names stay in the scene's tree (or, for a mesh the
    * scene names by an absolute path, in the mesh's own directory). */
   const char *root = name[0] == '/' ? NULL : p->base_dir ? p->base_dir : "";
-  if ((st = sh_mesh_load(sh->file, root, &sh->mesh, &e)))
+  if ((st = sh__mesh_load_named(sh->file, root, &sh->mesh, &sh->named, &sh->nnamed, &e)))
     return sh__fail_from(&p->c, "file", &e, ""); /* it names the file */
   return SH_OK;
 }

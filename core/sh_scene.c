@@ -16,6 +16,8 @@ void sh_scene_free(sh_scene *scene) {
   for (int i = 0; i < scene->nshapes; i++) {
     free(scene->shapes[i].file);
     free(scene->shapes[i].data);
+    for (int k = 0; k < scene->shapes[i].nnamed; k++) free(scene->shapes[i].named[k]);
+    free(scene->shapes[i].named);
     sh_mesh_free(&scene->shapes[i].mesh);
   }
   free(scene->shapes);

@@ -163,6 +163,10 @@ typedef struct sh_shape {
   char *file;          /* mesh file or heightfield image, resolved; owned;
                           NULL for a mesh from memory */
   char *data;          /* mesh from memory (shafts.h): its name; owned */
+  char **named;        /* the other files the mesh's load read (an OBJ's
+                          material library, a glTF's buffers and images),
+                          resolved; owned, nnamed of them (sh_outputs.h) */
+  int nnamed;
   sh_mesh mesh;        /* mesh, heightfield: object-space triangles; owned */
 } sh_shape;
 

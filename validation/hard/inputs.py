@@ -54,6 +54,24 @@ def _absolute(d):
     return [str(scene), "-o", str(scene.parent / "out.exr")]
 
 
+def _output_is_buffer(d):
+    """--stats naming the .bin buffer of the scene's glTF mesh (-o must end
+    in .exr or .png)."""
+    import struct
+    scene = _scene(d, shapes=SCENE["shapes"] + [{"type": "mesh", "material": "m",
+                                                  "file": "mesh.gltf"}])
+    (scene.parent / "mesh.bin").write_bytes(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0))
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+            "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+            "buffers": [{"byteLength": 36, "uri": "mesh.bin"}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 1, 0]}]}
+    (scene.parent / "mesh.gltf").write_text(json.dumps(gltf))
+    return [str(scene), "-o", str(scene.parent / "out.exr"), "--stats",
+            str(scene.parent / "mesh.bin")]
+
+
 def _stats_is_scene(d):
     scene = _scene(d)
     return [str(scene), "-o", str(scene.parent / "out.exr"), "--stats",
@@ -108,6 +126,9 @@ INPUT_CASES = [
               _absolute, "is absolute"),
     InputCase("stats_is_scene", 6, "--stats naming the scene itself (spelled ./s.json): "
               "refused before any work, the scene unchanged", _stats_is_scene,
+              "must not overwrite an input"),
+    InputCase("output_is_buffer", 6, "--stats naming the .bin buffer of the scene's glTF mesh: "
+              "refused before any work, the buffer unchanged", _output_is_buffer,
               "must not overwrite an input"),
     InputCase("scene_dev_zero", 7, "/dev/zero as the scene: refused at once, not read "
               "until memory runs out", _dev_zero, "not a regular file"),
