@@ -56,6 +56,20 @@ grep -q 'function { min(1, exp((' "$dir/fog_out.pov" \
 grep -q '"height_fog": {' "$dir/fog_out.blender.json" \
   || { echo "FAIL: the Blender export has no height fog"; fail=1; }
 rm -f "$dir"/fog_out.* "$dir/cs.json"
+# The atmosphere: POV-Ray writes it (approximated: --strict refuses), the
+# Blender target refuses it at medium.type and writes nothing.
+"$tool" "$src/scenes/sky_sunset.json" --to pov -o "$dir/sky_out.pov" 2>"$dir/err"
+check "--to pov writes the atmosphere" 0 $?
+grep -q "Mie's weight" "$dir/err" || { echo "FAIL: atmosphere note: $(cat "$dir/err")"; fail=1; }
+"$tool" "$src/scenes/sky_sunset.json" --to pov --strict -o "$dir/sky2_out.pov" 2>/dev/null
+check "--to pov --strict refuses the atmosphere's mixture" 2 $?
+"$tool" "$src/scenes/sky_sunset.json" --to blender -o "$dir/sky_out.py" 2>"$dir/err"
+check "--to blender refuses the atmosphere" 2 $?
+grep -q "sky_sunset.json:[0-9]*:[0-9]*: medium.type: .*'atmosphere'" "$dir/err" \
+  || { echo "FAIL: atmosphere refusal: $(cat "$dir/err")"; fail=1; }
+ls "$dir" | grep -qE '^(sky2_out|sky_out\.py|sky_out\.blender)' \
+  && { echo "FAIL: a refused export wrote an output"; fail=1; }
+rm -f "$dir"/sky_out.*
 height_fog_scene "$data/point_medium.json" "$dir/fog.json"
 "$tool" "$dir/fog.json" --to json -o "$dir/fog2.json"; check "json keeps height fog" 0 $?
 grep -q '"height_fog"' "$dir/fog2.json" && grep -q '"scale_height": 1' "$dir/fog2.json" \

@@ -542,6 +542,160 @@ static void medium(pov *p) {
   se_buf_puts(b, "    }\n  }\n}\n\n");
 }
 
+/* The atmosphere (docs/scene_export.md, "Non-uniform media"): the ground
+ * as an opaque Lambert sphere and the air as interior media of the top
+ * sphere, one medium per part with its density a function of the distance
+ * to the centre. POV-Ray scatters the sum of its media's scattering with
+ * the plain mean of their phases k (media.cpp,
+ * ComputeMediaScatteringAttenuation), not with the mixture weighted by
+ * each part's sigma_s at the point: exact for Rayleigh alone; with Mie the
+ * mixture's weights are fixed, chosen by adding media that only carry a
+ * phase type (scattering 0) until Mie's share of the mean is nearest to
+ * its share of the luminance of the vertical column's scattering, sigma_s
+ * times the scale height (noted). */
+#define SE_POV_ATMO_MEDIA 8
+
+/* r, the distance to the centre in POV-Ray units, as a function text. */
+static void atmo_radius(pov *p, const sh_atmosphere *a) {
+  sh_vec3 c = se_frame_point(&p->frame, a->center);
+  se_buf_puts(p->b, "sqrt((x - ");
+  num(p->b, c.x);
+  se_buf_puts(p->b, ")*(x - ");
+  num(p->b, c.x);
+  se_buf_puts(p->b, ") + (y - ");
+  num(p->b, c.y);
+  se_buf_puts(p->b, ")*(y - ");
+  num(p->b, c.y);
+  se_buf_puts(p->b, ") + (z - ");
+  num(p->b, c.z);
+  se_buf_puts(p->b, ")*(z - ");
+  num(p->b, c.z);
+  se_buf_puts(p->b, "))");
+}
+
+/* A density exp((R_g - r) / H), at most 1 (at the ground). */
+static void atmo_exp_density(pov *p, const sh_atmosphere *a, double H) {
+  se_buf_puts(p->b, "        density { function { min(1, exp((");
+  num(p->b, se_frame_length(&p->frame, a->ground_radius));
+  se_buf_puts(p->b, " - ");
+  atmo_radius(p, a);
+  se_buf_puts(p->b, ") / ");
+  num(p->b, se_frame_length(&p->frame, H));
+  se_buf_puts(p->b, ")) }\n          density_map { [0 rgb 0] [1 rgb 1] } }\n");
+}
+
+/* One media block: its sampling, scattering of a POV-Ray type (colour
+ * `ss` per unit, already divided by 4 pi times the mean k), absorption, and
+ * the density, if any (kind 0: none, 1: exp with H, 2: the ozone's tent). */
+static void atmo_media(pov *p, const sh_atmosphere *a, const se_phase_pov *pp,
+                       double k, sh_vec3 ss, sh_vec3 sa, int kind, double H) {
+  se_buf *b = p->b;
+  int final = p->opt->quality == SE_QUALITY_FINAL;
+  se_buf_printf(b, "    media {\n      method 2\n      intervals %d\n      samples %d, %d\n"
+                   "      jitter 0\n      scattering {\n        %d, ",
+                final ? 255 : 200, final ? 4 : 1, final ? 4 : 1, pp->type);
+  colour(b, ss);
+  se_buf_puts(b, "\n        extinction ");
+  num(b, k);
+  if (pp->type == 5) {
+    se_buf_puts(b, "\n        eccentricity ");
+    num(b, pp->g);
+  }
+  se_buf_puts(b, "\n      }\n");
+  if (!sh_is_black(sa)) {
+    se_buf_puts(b, "      absorption ");
+    colour(b, sa);
+    se_buf_puts(b, "\n");
+  }
+  if (kind == 1) atmo_exp_density(p, a, H);
+  if (kind == 2) {
+    se_buf_puts(b, "        density { function { max(0, 1 - abs(");
+    atmo_radius(p, a);
+    se_buf_puts(b, " - ");
+    num(b, se_frame_length(&p->frame, a->ground_radius + a->ozone_height));
+    se_buf_puts(b, ") / ");
+    num(b, se_frame_length(&p->frame, 0.5 * a->ozone_width));
+    se_buf_puts(b, ") }\n          density_map { [0 rgb 0] [1 rgb 1] } }\n");
+  }
+  se_buf_puts(b, "    }\n");
+}
+
+static double luminance(sh_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+static void atmosphere(pov *p) {
+  const sh_atmosphere *a = &p->scene->medium.atmo;
+  se_buf *b = p->b;
+  sh_phase rayleigh = {SH_PHASE_RAYLEIGH, 0.0};
+  se_phase_pov pr = se_phase_to_pov(&rayleigh), pm = se_phase_to_pov(&a->mie_phase);
+  /* Media types: n_m of Mie's and the rest Rayleigh's, the first of each
+   * carrying the part's scattering, the ozone one more Rayleigh. */
+  int n = a->has_mie ? SE_POV_ATMO_MEDIA : 1 + (a->has_ozone ? 1 : 0);
+  int n_m = 0;
+  double w = 0.0;
+  if (a->has_mie) {
+    double lm = luminance(a->mie_sigma_s) * a->mie_H;
+    double lr = luminance(a->rayleigh_sigma_s) * a->rayleigh_H;
+    double share = lm + lr > 0 ? lm / (lm + lr) : 0.5, best = 2.0;
+    for (int k = 1; k < n; k++) {
+      double wk = k * pm.mean / (k * pm.mean + (n - k) * pr.mean);
+      if (fabs(wk - share) < best) {
+        best = fabs(wk - share);
+        n_m = k;
+        w = wk;
+      }
+    }
+    if (!pm.exact)
+      se_note(p->notes,
+              "medium.mie.phase: POV-Ray has no %s phase; it is rendered as one "
+              "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
+              se_phase_name(a->mie_phase.type), pm.g);
+    se_note(p->notes,
+            "medium: POV-Ray mixes the phases of its media with fixed weights, not "
+            "by each part's sigma_s at the point: Rayleigh and Mie are mixed with "
+            "Mie's weight %.3f everywhere (its share of the luminance of the "
+            "vertical column's scattering, sigma_s H, is %.3f).",
+            w, share);
+  }
+  double S = ((n - n_m) * pr.mean + n_m * pm.mean) / n; /* the mean of the means */
+  double k = 4.0 * SH_PI * S;
+  se_buf_puts(b, "// The atmosphere: the ground, an opaque Lambert sphere.\nsphere {\n  ");
+  point(p, a->center);
+  se_buf_puts(b, ", ");
+  num(b, se_frame_length(&p->frame, a->ground_radius));
+  se_buf_puts(b, "\n  pigment { ");
+  colour(b, sh_scale(a->ground_albedo, SH_INV_PI));
+  se_buf_puts(b, " }\n  finish { ambient 0 diffuse 1 emission 0 }\n}\n\n");
+  se_buf_printf(b, "// The air: %d media in the top sphere (Rayleigh, then Mie, the ozone and\n"
+                   "// media that only set the phase mixture's weights); scattering colours\n"
+                   "// sigma_s / (4 pi S) with `extinction` 4 pi S, S = %.9g the mean of the\n"
+                   "// media's k over the sphere, so that the extinction is exact and the\n"
+                   "// in-scattering is sigma_s times the mixture of the media's phases.\n",
+                n, S);
+  se_buf_puts(b, "sphere {\n  ");
+  point(p, a->center);
+  se_buf_puts(b, ", ");
+  num(b, se_frame_length(&p->frame, a->top_radius * (1.0 + 1e-9)));
+  se_buf_puts(b, "\n");
+  helper_texture(b, "rgbt <1, 1, 1, 1>", 0);
+  se_buf_puts(b, "  interior {\n");
+  sh_vec3 zero = sh_v3s(0.0);
+  atmo_media(p, a, &pr, k, se_frame_per_length(&p->frame, sh_scale(a->rayleigh_sigma_s, 1.0 / k)),
+             zero, 1, a->rayleigh_H);
+  int used_r = 1, used_m = 0;
+  if (a->has_mie) {
+    atmo_media(p, a, &pm, k, se_frame_per_length(&p->frame, sh_scale(a->mie_sigma_s, 1.0 / k)),
+               se_frame_per_length(&p->frame, a->mie_sigma_a), 1, a->mie_H);
+    used_m = 1;
+  }
+  if (a->has_ozone) {
+    atmo_media(p, a, &pr, k, zero, se_frame_per_length(&p->frame, a->ozone_sigma_a), 2, 0.0);
+    used_r++;
+  }
+  for (; used_m < n_m; used_m++) atmo_media(p, a, &pm, k, zero, zero, 0, 0.0);
+  for (; used_r < n - n_m; used_r++) atmo_media(p, a, &pr, k, zero, zero, 0, 0.0);
+  se_buf_puts(b, "  }\n}\n\n");
+}
+
 static void ini(se_buf *b, const char *name, const sh_scene *s) {
   se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
   se_buf_printf(b, "%s.ini` in this directory.\n", name);
@@ -571,6 +725,12 @@ static void choose_frame(pov *p) {
   se_content_sphere(s, &p->center, &p->radius);
   double reach = sh_length(sh_sub(s->camera.position, p->center));
   double scale = pow(10.0, round(log10(300.0 / p->radius)));
+  /* An atmosphere: the air's thickness about 100 units (kilometres for
+   * the Earth in km or m), so that an eye a metre above the ground stays
+   * above POV-Ray's tolerances of 1e-3 units. */
+  if (s->medium.present && s->medium.type == SH_MEDIUM_ATMOSPHERE)
+    scale = pow(10.0, round(log10(100.0 / (s->medium.atmo.top_radius -
+                                           s->medium.atmo.ground_radius))));
   if (reach * scale > 1e6) scale = pow(10.0, floor(log10(1e6 / reach)));
   if (p->radius * scale < 3.0)
     se_note(p->notes,
@@ -631,7 +791,10 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
     else spot_or_point(&p, i);
   }
   for (int i = 0; i < scene->nmaterials; i++) material(&p, i);
-  if (scene->medium.present) medium(&p);
+  if (scene->medium.present && scene->medium.type == SH_MEDIUM_ATMOSPHERE)
+    atmosphere(&p);
+  else if (scene->medium.present)
+    medium(&p);
   for (int i = 0; i < scene->nshapes; i++) {
     sh_status st = shape(&p, i, err);
     if (st != SH_OK) {

@@ -8,14 +8,17 @@
 
 /* The medium types the renderers' targets write: the others are refused,
  * located at medium.type. */
-static sh_status se_medium_supported(const sh_scene *scene, const char *who,
-                                     sh_error *err) {
+static sh_status se_medium_supported(const sh_scene *scene, const char *target,
+                                     const char *who, sh_error *err) {
   const sh_medium *m = &scene->medium;
   if (!m->present) return SH_OK;
   switch (m->type) {
   case SH_MEDIUM_HOMOGENEOUS:
   case SH_MEDIUM_HEIGHT_FOG:
     return SH_OK;
+  case SH_MEDIUM_ATMOSPHERE:
+    if (!strcmp(target, "pov")) return SH_OK;
+    break;
   default:
     break;
   }
@@ -47,9 +50,10 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
   char who[64];
   snprintf(who, sizeof who, "the %s exporter", target->name);
   /* The json target writes the scene as it is; the others write
-   * homogeneous media and height fog (issue 12). */
+   * homogeneous media and height fog, POV-Ray the atmosphere too (issue
+   * 12). */
   if (strcmp(target->name, "json") != 0) {
-    sh_status st = se_medium_supported(scene, who, err);
+    sh_status st = se_medium_supported(scene, target->name, who, err);
     if (st != SH_OK) return st;
   }
   sh_status st = target->build(scene, opt, out_path, &out, notes, err);
