@@ -31,18 +31,25 @@ def _scene(d, **changes):
     return path
 
 
-def _escape(d):
-    """A glTF whose buffer is named '../secret.bin' (shared/cases/gltf_escape)."""
-    (Path(d) / "secret.bin").write_bytes(bytes(48))
+def _gltf_scene(d, uri):
+    """The scene with a glTF mesh, mesh.gltf, whose buffer is named `uri`
+    (a triangle of three float vertices, 36 bytes)."""
     scene = _scene(d, shapes=SCENE["shapes"] + [{"type": "mesh", "material": "m",
                                                   "file": "mesh.gltf"}])
     gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
             "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-            "buffers": [{"byteLength": 36, "uri": "../secret.bin"}],
+            "buffers": [{"byteLength": 36, "uri": uri}],
             "bufferViews": [{"buffer": 0, "byteLength": 36}],
             "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                            "min": [0, 0, 0], "max": [0, 0, 0]}]}
     (scene.parent / "mesh.gltf").write_text(json.dumps(gltf))
+    return scene
+
+
+def _escape(d):
+    """A glTF whose buffer is named '../secret.bin' (shared/cases/gltf_escape)."""
+    (Path(d) / "secret.bin").write_bytes(bytes(48))
+    scene = _gltf_scene(d, "../secret.bin")
     return [str(scene), "-o", str(scene.parent / "out.exr")]
 
 
@@ -57,17 +64,8 @@ def _absolute(d):
 def _output_is_buffer(d):
     """--stats naming the .bin buffer of the scene's glTF mesh (-o must end
     in .exr or .png)."""
-    import struct
-    scene = _scene(d, shapes=SCENE["shapes"] + [{"type": "mesh", "material": "m",
-                                                  "file": "mesh.gltf"}])
-    (scene.parent / "mesh.bin").write_bytes(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0))
-    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-            "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-            "buffers": [{"byteLength": 36, "uri": "mesh.bin"}],
-            "bufferViews": [{"buffer": 0, "byteLength": 36}],
-            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                           "min": [0, 0, 0], "max": [1, 1, 0]}]}
-    (scene.parent / "mesh.gltf").write_text(json.dumps(gltf))
+    scene = _gltf_scene(d, "mesh.bin")
+    (scene.parent / "mesh.bin").write_bytes(bytes(36))
     return [str(scene), "-o", str(scene.parent / "out.exr"), "--stats",
             str(scene.parent / "mesh.bin")]
 
