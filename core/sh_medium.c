@@ -339,6 +339,10 @@ static void refusal_at(const sh_scene *scene, int line, int column,
   snprintf(err->path, sizeof err->path, "%s", path);
 }
 
+void sh_medium_locate_type(const sh_scene *scene, sh_error *err) {
+  refusal_at(scene, scene->medium.line, scene->medium.column, "medium.type", err);
+}
+
 sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
                                   unsigned kinds, sh_error *err) {
   const sh_medium *m = &scene->medium;
@@ -366,10 +370,4 @@ sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
                who, names, sh_medium_type_name(m->type));
   refusal_at(scene, m->line, m->column, "medium.type", err);
   return SH_ERR_SCENE;
-}
-
-sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
-                                        sh_error *err) {
-  return sh_medium_require_kinds(scene, who, SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS),
-                                 err);
 }

@@ -142,17 +142,16 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
                                  double a, double b, double u,
                                  double *inv_pdf);
 
-/* For the renderers and exporters that render homogeneous media and the
- * format's first five phase functions only: SH_ERR_SCENE, located at the
- * scene's medium.phase.type or medium.type and naming `who` (the tool) and
- * what it cannot render, if the medium has the cornette_shanks phase or is
- * of another kind than homogeneous; SH_OK otherwise. */
-sh_status sh_medium_require_homogeneous(const sh_scene *scene, const char *who,
-                                        sh_error *err);
+/* Sets `err`'s location (the scene's file, line and column of its
+ * medium's `type`, key path medium.type) for a refusal of the medium's
+ * kind whose message the caller has set; nothing if `err` is NULL. */
+void sh_medium_locate_type(const sh_scene *scene, sh_error *err);
 
-/* The same for a tool that renders the kinds in `kinds`, a mask of
- * SH_MEDIUM_KIND(type) bits (the refusal names them), and the format's
- * first five phase functions. */
+/* For a tool that renders the medium kinds in `kinds`, a mask of
+ * SH_MEDIUM_KIND(type) bits, and the format's first five phase functions:
+ * SH_ERR_SCENE, located at the scene's medium.phase.type or medium.type
+ * and naming `who` (the tool) and the kinds it renders, if the medium has
+ * the cornette_shanks phase or another kind; SH_OK otherwise. */
 #define SH_MEDIUM_KIND(type) (1u << (unsigned)(type))
 sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
                                   unsigned kinds, sh_error *err);

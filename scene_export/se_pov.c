@@ -558,19 +558,19 @@ static void medium(pov *p) {
 /* r, the distance to the centre in POV-Ray units, as a function text. */
 static void atmo_radius(pov *p, const sh_atmosphere *a) {
   sh_vec3 c = se_frame_point(&p->frame, a->center);
-  se_buf_puts(p->b, "sqrt((x - ");
-  num(p->b, c.x);
-  se_buf_puts(p->b, ")*(x - ");
-  num(p->b, c.x);
-  se_buf_puts(p->b, ") + (y - ");
-  num(p->b, c.y);
-  se_buf_puts(p->b, ")*(y - ");
-  num(p->b, c.y);
-  se_buf_puts(p->b, ") + (z - ");
-  num(p->b, c.z);
-  se_buf_puts(p->b, ")*(z - ");
-  num(p->b, c.z);
-  se_buf_puts(p->b, "))");
+  const double cc[3] = {c.x, c.y, c.z};
+  static const char *const axis[3] = {"(x - ", "(y - ", "(z - "};
+  se_buf_puts(p->b, "sqrt(");
+  for (int i = 0; i < 3; i++) {
+    if (i) se_buf_puts(p->b, " + ");
+    se_buf_puts(p->b, axis[i]);
+    num(p->b, cc[i]);
+    se_buf_puts(p->b, ")*");
+    se_buf_puts(p->b, axis[i]);
+    num(p->b, cc[i]);
+    se_buf_puts(p->b, ")");
+  }
+  se_buf_puts(p->b, ")");
 }
 
 /* A density exp((R_g - r) / H), at most 1 (at the ground). */

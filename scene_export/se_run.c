@@ -26,12 +26,7 @@ static sh_status se_medium_supported(const sh_scene *scene, const char *target,
                "%s does not write a medium of type '%s' yet; lmm_tracer renders "
                "it (docs/scene-format.md, \"Non-uniform media\")",
                who, sh_medium_type_name(m->type));
-  if (err) {
-    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
-    err->line = m->line;
-    err->column = m->column;
-    snprintf(err->path, sizeof err->path, "%s", "medium.type");
-  }
+  sh_medium_locate_type(scene, err);
   return SH_ERR_SCENE;
 }
 
