@@ -16,6 +16,7 @@
 
 #include "sh_array.h"
 #include "sh_image_int.h"
+#include "sh_str.h"
 
 typedef struct sh__file {
   char *given;    /* the path as given */
@@ -73,27 +74,6 @@ static char *sh__dup(const char *s) {
   char *d = malloc(n);
   if (d) memcpy(d, s, n);
   return d;
-}
-
-static char *sh__printf_alloc(const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 1, 2)))
-#endif
-    ;
-
-#include <stdarg.h>
-static char *sh__printf_alloc(const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  int n = vsnprintf(NULL, 0, fmt, ap);
-  va_end(ap);
-  if (n < 0) return NULL;
-  char *s = malloc((size_t)n + 1);
-  if (!s) return NULL;
-  va_start(ap, fmt);
-  vsnprintf(s, (size_t)n + 1, fmt, ap);
-  va_end(ap);
-  return s;
 }
 
 /* Discards a file's staged temporary, if any. */

@@ -1,9 +1,10 @@
 /* The program cache on disk (gs_program_cache.h). */
+#define _GNU_SOURCE /* O_PATH, O_TMPFILE */
 #include "gs_program_cache.h"
 #include "gs_program.h"
 
 #include "shafts.h"
-#include "sh_file.h"
+#include "sh_str.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -14,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define GS__CACHE_MAGIC "SHPROGB1"
@@ -29,25 +31,46 @@ gs__program_cache_counts gs__program_cache_counts_get(void) {
   return c;
 }
 
-void gs__program_cache_dir(char *dir, size_t size) {
-  dir[0] = '\0';
+char *gs__program_cache_dir(void) {
   const char *env = getenv("SHAFTS_PROGRAM_CACHE");
   const char *xdg = getenv("XDG_CACHE_HOME");
   const char *home = getenv("HOME");
-  int n = 0;
-  if (env) {
-    if (strcmp(env, "off") && strcmp(env, "0"))
-      n = snprintf(dir, size, "%s", env);
-  } else if (xdg && xdg[0] == '/') {
-    n = snprintf(dir, size, "%s/shafts/programs", xdg);
-  } else if (home && home[0] == '/') {
-    n = snprintf(dir, size, "%s/.cache/shafts/programs", home);
+  if (env)
+    return env[0] && strcmp(env, "off") && strcmp(env, "0")
+               ? sh__printf_alloc("%s", env)
+               : NULL;
+  if (xdg && xdg[0] == '/')
+    return sh__printf_alloc("%s/shafts/programs", xdg);
+  if (home && home[0] == '/')
+    return sh__printf_alloc("%s/.cache/shafts/programs", home);
+  return NULL;
+}
+
+int gs__program_cache_open_dir(const char *dir, int create) {
+  size_t n = strlen(dir) + 1;
+  char *copy = malloc(n);
+  if (!copy)
+    return -1;
+  memcpy(copy, dir, n);
+  /* O_PATH: a directory only searched (mode --x) is walked through too. */
+  const int flags = O_PATH | O_DIRECTORY | O_CLOEXEC;
+  int fd = open(copy[0] == '/' ? "/" : ".", flags);
+  for (char *s = copy; fd >= 0 && *s;) {
+    char *end = strchr(s, '/');
+    if (end)
+      *end = '\0';
+    if (*s) {
+      int next = openat(fd, s, flags);
+      if (next < 0 && errno == ENOENT && create &&
+          (mkdirat(fd, s, 0700) == 0 || errno == EEXIST))
+        next = openat(fd, s, flags);
+      close(fd);
+      fd = next;
+    }
+    s = end ? end + 1 : s + strlen(s);
   }
-  /* A directory whose files' names would not fit
-   * the buffers (PATH_MAX) turns the cache off rather than being cut to
-   * another directory. */
-  if (n < 0 || (size_t)n + GS__CACHE_NAME_ROOM >= size)
-    dir[0] = '\0';
+  free(copy);
+  return fd;
 }
 
 void gs__program_cache_driver(char *buf, size_t size) {
@@ -105,14 +128,14 @@ char *gs__program_cache_key(const char *driver, const gs__glsl *vs,
   return key;
 }
 
-void gs__program_cache_file(const char *dir, const char *key, size_t len,
-                            char *path, size_t size) {
+void gs__program_cache_name(const char *key, size_t len,
+                            char name[GS__CACHE_NAME_SIZE]) {
   uint64_t h = 1469598103934665603ULL;
   for (size_t i = 0; i < len; i++) {
     h ^= (unsigned char)key[i];
     h *= 1099511628211ULL;
   }
-  snprintf(path, size, "%s/%016llx.bin", dir, (unsigned long long)h);
+  snprintf(name, GS__CACHE_NAME_SIZE, "%016llx.bin", (unsigned long long)h);
 }
 
 /* Whether the current context can hand out program binaries. */
@@ -145,11 +168,15 @@ static int gs__transfer(int fd, void *buf, size_t n, int writing) {
 
 GLuint gs__program_cache_load_key(const char *dir, const char *key,
                                   size_t len) {
-  char path[4096];
-  gs__program_cache_file(dir, key, len, path, sizeof path);
-  int fd = open(path, O_RDONLY | O_CLOEXEC);
-  if (fd < 0)
+  char name[GS__CACHE_NAME_SIZE];
+  gs__program_cache_name(key, len, name);
+  int dirfd = gs__program_cache_open_dir(dir, 0);
+  int fd = dirfd < 0 ? -1 : openat(dirfd, name, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    if (dirfd >= 0)
+      close(dirfd);
     return 0;
+  }
   gs__cache_header h;
   char *buf = NULL;
   GLuint prog = 0;
@@ -188,27 +215,48 @@ done:
   free(buf);
   close(fd);
   if (stale)
-    unlink(path);
+    unlinkat(dirfd, name, 0);
+  close(dirfd);
   return prog;
 }
 
-/* Makes dir and its parents (0700 for the ones it makes); 1 if it exists. */
-static int gs__mkdirs(const char *dir) {
-  char p[4096];
-  snprintf(p, sizeof p, "%s", dir);
-  for (char *s = p + 1; *s; s++) {
-    if (*s != '/')
-      continue;
-    *s = '\0';
-    if (mkdir(p, 0700) != 0 && errno != EEXIST)
-      return 0;
-    *s = '/';
+/* Writes n bytes as the file `name` of the directory dirfd atomically: in
+ * an unnamed temporary (O_TMPFILE) given a hidden name once complete and
+ * renamed over `name`, so a killed process leaves no partial entry; where
+ * the file system has no O_TMPFILE, in the hidden named temporary
+ * ".NAME.<pid>.<n>" from the start (which a process killed meanwhile
+ * leaves, and the eviction removes an hour later). 1 on success. */
+static int gs__cache_write(int dirfd, const char *name, const void *data,
+                           size_t n) {
+  static atomic_uint serial;
+  char *tmp = sh__printf_alloc(".%s.%ld.%u", name, (long)getpid(),
+                               atomic_fetch_add(&serial, 1));
+  if (!tmp)
+    return 0;
+  int named = 0;
+  int fd = openat(dirfd, ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    fd = openat(dirfd, tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    named = fd >= 0;
   }
-  return mkdir(p, 0700) == 0 || errno == EEXIST;
+  int ok = fd >= 0 && gs__transfer(fd, (void *)data, n, 1);
+  if (ok && !named) {
+    char *proc = sh__printf_alloc("/proc/self/fd/%d", fd);
+    ok = proc && linkat(AT_FDCWD, proc, dirfd, tmp, AT_SYMLINK_FOLLOW) == 0;
+    named = ok;
+    free(proc);
+  }
+  if (fd >= 0)
+    close(fd);
+  ok = ok && renameat(dirfd, tmp, dirfd, name) == 0;
+  if (!ok && named)
+    unlinkat(dirfd, tmp, 0);
+  free(tmp);
+  return ok;
 }
 
 typedef struct gs__cache_entry {
-  char name[32];
+  char name[GS__CACHE_NAME_SIZE];
   off_t size;
   struct timespec mtime;
 } gs__cache_entry;
@@ -222,23 +270,35 @@ static int gs__older_first(const void *a, const void *b) {
 }
 
 /* Past GS__CACHE_LIMIT bytes of programs, removes the least recently used
- * until under GS__CACHE_KEEP. */
-static void gs__cache_evict(const char *dir) {
-  DIR *d = opendir(dir);
-  if (!d)
+ * until under GS__CACHE_KEEP; removes the hidden temporaries of
+ * gs__cache_write older than an hour. */
+static void gs__cache_evict(int dirfd) {
+  int fd = openat(dirfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  DIR *d = fd < 0 ? NULL : fdopendir(fd);
+  if (!d) {
+    if (fd >= 0)
+      close(fd);
     return;
+  }
+  struct timespec now;
+  clock_gettime(CLOCK_REALTIME, &now);
   gs__cache_entry *e = NULL;
   size_t n = 0, cap = 0;
   off_t total = 0;
   struct dirent *de;
   while ((de = readdir(d))) {
     size_t l = strlen(de->d_name);
-    if (l != 20 || strcmp(de->d_name + 16, ".bin"))
-      continue;
-    char path[4096];
     struct stat st;
-    snprintf(path, sizeof path, "%s/%s", dir, de->d_name);
-    if (stat(path, &st) != 0)
+    if (de->d_name[0] == '.' && l > GS__CACHE_NAME_SIZE &&
+        !strncmp(de->d_name + 17, ".bin.", 5) &&
+        fstatat(dirfd, de->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+        S_ISREG(st.st_mode) && st.st_mtim.tv_sec + 3600 < now.tv_sec) {
+      unlinkat(dirfd, de->d_name, 0);
+      continue;
+    }
+    if (l + 1 != GS__CACHE_NAME_SIZE || strcmp(de->d_name + 16, ".bin"))
+      continue;
+    if (fstatat(dirfd, de->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0)
       continue;
     if (n == cap) {
       size_t c = cap ? 2 * cap : 64;
@@ -248,7 +308,7 @@ static void gs__cache_evict(const char *dir) {
       e = ne;
       cap = c;
     }
-    snprintf(e[n].name, sizeof e[n].name, "%s", de->d_name);
+    memcpy(e[n].name, de->d_name, GS__CACHE_NAME_SIZE);
     e[n].size = st.st_size;
     e[n].mtime = st.st_mtim;
     total += st.st_size;
@@ -258,9 +318,7 @@ static void gs__cache_evict(const char *dir) {
   if (total > GS__CACHE_LIMIT) {
     qsort(e, n, sizeof *e, gs__older_first);
     for (size_t i = 0; i < n && total > GS__CACHE_KEEP; i++) {
-      char path[4096];
-      snprintf(path, sizeof path, "%s/%s", dir, e[i].name);
-      if (unlink(path) == 0)
+      if (unlinkat(dirfd, e[i].name, 0) == 0)
         total -= e[i].size;
     }
   }
@@ -279,13 +337,13 @@ int gs__program_cache_store_key(const char *dir, const char *key, size_t len,
   GLsizei got = 0;
   GLenum format = 0;
   glGetProgramBinary(prog, size, &got, &format, bin);
-  int ok = got > 0 && glGetError() == GL_NO_ERROR && gs__mkdirs(dir);
-  char path[4096];
+  int dirfd = -1;
+  int ok = got > 0 && glGetError() == GL_NO_ERROR &&
+           (dirfd = gs__program_cache_open_dir(dir, 1)) >= 0;
   char *file = NULL;
   if (ok) {
-    /* One write through sh_file_write_atomic: an unnamed temporary named
-     * only when complete, so a killed process leaves no partial entry. */
-    gs__program_cache_file(dir, key, len, path, sizeof path);
+    char name[GS__CACHE_NAME_SIZE];
+    gs__program_cache_name(key, len, name);
     gs__cache_header h;
     memcpy(h.magic, GS__CACHE_MAGIC, 8);
     h.format = format;
@@ -298,14 +356,15 @@ int gs__program_cache_store_key(const char *dir, const char *key, size_t len,
       memcpy(file, &h, sizeof h);
       memcpy(file + sizeof h, key, len);
       memcpy(file + sizeof h + len, bin, (size_t)got);
-      sh_error err = {0};
-      ok = sh_file_write_atomic(path, file, n, &err) == SH_OK;
+      ok = gs__cache_write(dirfd, name, file, n);
     }
   }
   free(file);
   free(bin);
   if (ok)
-    gs__cache_evict(dir);
+    gs__cache_evict(dirfd);
+  if (dirfd >= 0)
+    close(dirfd);
   return ok;
 }
 
@@ -313,13 +372,14 @@ void gs__program_cache_prepare(GLuint prog) {
   glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
 }
 
-/* The directory and the key of a program, or 0 if the cache is off or
- * cannot serve this context. */
+/* The directory (malloc'ed) and the key of a program, or 0 if the cache
+ * is off or cannot serve this context. */
 static int gs__cache_begin(const gs__glsl *vs, const gs__glsl *fs,
-                           const char *defines, char *dir, size_t dir_size,
-                           char **key, size_t *len) {
-  gs__program_cache_dir(dir, dir_size);
-  if (!dir[0] || !gs__binaries_supported())
+                           const char *defines, char **dir, char **key,
+                           size_t *len) {
+  *key = NULL;
+  *dir = gs__program_cache_dir();
+  if (!*dir || !gs__binaries_supported())
     return 0;
   char driver[1024];
   gs__program_cache_driver(driver, sizeof driver);
@@ -329,25 +389,25 @@ static int gs__cache_begin(const gs__glsl *vs, const gs__glsl *fs,
 
 GLuint gs__program_cache_load(const gs__glsl *vs, const gs__glsl *fs,
                               const char *defines) {
-  char dir[4096];
-  char *key = NULL;
+  char *dir = NULL, *key = NULL;
   size_t len = 0;
-  if (!gs__cache_begin(vs, fs, defines, dir, sizeof dir, &key, &len))
-    return 0;
-  GLuint prog = gs__program_cache_load_key(dir, key, len);
+  GLuint prog = 0;
+  if (gs__cache_begin(vs, fs, defines, &dir, &key, &len)) {
+    prog = gs__program_cache_load_key(dir, key, len);
+    atomic_fetch_add(prog ? &gs__hits : &gs__misses, 1);
+  }
   free(key);
-  atomic_fetch_add(prog ? &gs__hits : &gs__misses, 1);
+  free(dir);
   return prog;
 }
 
 void gs__program_cache_store(GLuint prog, const gs__glsl *vs,
                              const gs__glsl *fs, const char *defines) {
-  char dir[4096];
-  char *key = NULL;
+  char *dir = NULL, *key = NULL;
   size_t len = 0;
-  if (!gs__cache_begin(vs, fs, defines, dir, sizeof dir, &key, &len))
-    return;
-  if (gs__program_cache_store_key(dir, key, len, prog))
+  if (gs__cache_begin(vs, fs, defines, &dir, &key, &len) &&
+      gs__program_cache_store_key(dir, key, len, prog))
     atomic_fetch_add(&gs__stores, 1);
   free(key);
+  free(dir);
 }

@@ -16,17 +16,18 @@
  * strings) is removed and the program compiled as if it were not there.
  *
  * Where: $SHAFTS_PROGRAM_CACHE if set ("off" or "" turns the cache off),
- * else $XDG_CACHE_HOME/shafts/programs, else ~/.cache/shafts/programs.
+ * else $XDG_CACHE_HOME/shafts/programs, else ~/.cache/shafts/programs, a
+ * directory of any length (reached through directory descriptors, openat,
+ * so even one longer than PATH_MAX works).
  * Bounded: past 64 MiB the files least recently used (by modification
  * time, which a hit refreshes) go until it is under 48 MiB.
  *
  * Failures never fail a render: a directory that cannot be made or
  * written, a short or foreign file, a driver with no binary formats
  * (GL_NUM_PROGRAM_BINARY_FORMATS is 0) all fall back to compiling, and
- * nothing is printed. Writes are atomic (sh_file_write_atomic: an unnamed
- * temporary given its name only when complete, so even a killed process
- * leaves no partial entry), so processes and threads may share the
- * directory.
+ * nothing is printed. Writes are atomic (an unnamed temporary, O_TMPFILE,
+ * given its name only when complete, so even a killed process leaves no
+ * partial entry), so processes and threads may share the directory.
  *
  * On Mesa the binary holds the linked program in Mesa's intermediate form,
  * not llvmpipe's machine code: the JIT compilation at the first draw is
@@ -55,23 +56,27 @@ GLuint gs__program_cache_load(const gs__glsl *vs, const gs__glsl *fs,
 void gs__program_cache_store(GLuint prog, const gs__glsl *vs,
                              const gs__glsl *fs, const char *defines);
 
-/* The layer below, for the tests: the cache directory now ("" when off,
- * written into dir, size bytes), the driver description of the current
- * context, the key of a program (malloc'ed, *len bytes; NULL out of
- * memory or for an unknown include), and loading and storing by key in a given directory. store
- * returns 1 if a file was written. */
-void gs__program_cache_dir(char *dir, size_t size);
-/* Room the cache keeps after the directory in a buffer of its size: "/",
- * 16 hex digits and ".bin", with margin. A longer
- * directory turns the cache off (never cut to another directory). */
-#define GS__CACHE_NAME_ROOM 64
+/* The layer below, for the tests: the cache directory now (malloc'ed, of
+ * any length; NULL when the cache is off or out of memory), the driver
+ * description of the current context, the key of a program (malloc'ed,
+ * *len bytes; NULL out of memory or for an unknown include), and loading
+ * and storing by key in a given directory. store returns 1 if a file was
+ * written. */
+char *gs__program_cache_dir(void);
 void gs__program_cache_driver(char *buf, size_t size);
 char *gs__program_cache_key(const char *driver, const gs__glsl *vs,
                             const gs__glsl *fs, const char *defines,
                             size_t *len);
-/* The file of a key: DIR/<its FNV-1a 64 hash in hex>.bin. */
-void gs__program_cache_file(const char *dir, const char *key, size_t len,
-                            char *path, size_t size);
+/* The name of a key's file in the directory: its FNV-1a 64 hash in hex and
+ * ".bin", 20 characters and a NUL. */
+#define GS__CACHE_NAME_SIZE 21
+void gs__program_cache_name(const char *key, size_t len,
+                            char name[GS__CACHE_NAME_SIZE]);
+/* Opens the directory `dir` (O_PATH), walking it one component at a time
+ * with openat so that its length is not bounded by PATH_MAX (only each
+ * component by NAME_MAX), making the missing ones (0700) if `create`.
+ * Returns the descriptor, or -1 with errno. */
+int gs__program_cache_open_dir(const char *dir, int create);
 GLuint gs__program_cache_load_key(const char *dir, const char *key,
                                   size_t len);
 int gs__program_cache_store_key(const char *dir, const char *key, size_t len,

@@ -6,6 +6,7 @@
  * are misses that remove the file; a cache that cannot be written never
  * fails a render. The cache lives in a temporary directory of its own
  * (SHAFTS_PROGRAM_CACHE). */
+#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,7 @@
 
 #include "gs_context.h"
 #include "gs_program_cache.h"
+#include "sh_str.h"
 #include "test_util.h"
 
 static const char *SCENE =
@@ -94,17 +96,15 @@ static long file_size(const char *path) {
  * header is 8 magic bytes and three 32-bit counts (format, key and binary
  * lengths). Returns it malloc'ed, or NULL. */
 static char *key_of_a_file(const char *dir, size_t *len) {
-  char cmd[4200], name[4096];
-  snprintf(cmd, sizeof cmd, "ls '%s' | grep '[.]bin$' | head -1", dir);
-  FILE *p = popen(cmd, "r");
-  if (!p) return NULL;
-  int got = fgets(name, sizeof name, p) != NULL;
-  pclose(p);
-  if (!got) return NULL;
-  name[strcspn(name, "\n")] = '\0';
-  char path[8200];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "rb");
+  DIR *d = opendir(dir);
+  if (!d) return NULL;
+  char *path = NULL;
+  for (struct dirent *de; !path && (de = readdir(d));)
+    if (strlen(de->d_name) + 1 == GS__CACHE_NAME_SIZE && strstr(de->d_name, ".bin"))
+      path = sh__printf_alloc("%s/%s", dir, de->d_name);
+  closedir(d);
+  FILE *f = path ? fopen(path, "rb") : NULL;
+  free(path);
   if (!f) return NULL;
   unsigned char h[20];
   char *key = NULL;
@@ -171,8 +171,9 @@ static void test_keys(const char *dir) {
 
   /* A binary the driver refuses: the bytes after the file's key
    * overwritten (the header is 20 bytes). */
-  char path[4096];
-  gs__program_cache_file(dir, drv, n_drv, path, sizeof path);
+  char name[GS__CACHE_NAME_SIZE];
+  gs__program_cache_name(drv, n_drv, name);
+  char *path = sh__printf_alloc("%s/%s", dir, name);
   tu_check(file_size(path) > 0, "the file of the key is there");
   FILE *f = fopen(path, "r+b");
   if (f) {
@@ -196,6 +197,7 @@ static void test_keys(const char *dir) {
   }
   tu_check(gs__program_cache_load_key(dir, drv, n_drv) == 0 && file_size(path) < 0,
            "a foreign file is a miss, removed");
+  free(path);
   free(same);
   free(src);
   free(drv);
@@ -203,12 +205,20 @@ static void test_keys(const char *dir) {
   gs__context_free(ctx);
 }
 
+/* Whether SHAFTS_PROGRAM_CACHE (or, unset, XDG_CACHE_HOME or HOME) gives
+ * the directory `want` (NULL: the cache off). */
+static int dir_is(const char *want) {
+  char *got = gs__program_cache_dir();
+  int ok = want ? got && !strcmp(got, want) : got == NULL;
+  free(got);
+  return ok;
+}
+
 static void test_unwritable(const sh_scene *scene, const char *dir) {
-  char file[4096], below[4200];
-  snprintf(file, sizeof file, "%s/a_file", dir);
+  char *file = sh__printf_alloc("%s/a_file", dir);
+  char *below = sh__printf_alloc("%s/programs", file);
   FILE *f = fopen(file, "wb");
   if (f) fclose(f);
-  snprintf(below, sizeof below, "%s/programs", file);
   sh_image img = {0};
   gs__program_cache_counts c0 = gs__program_cache_counts_get();
   tu_check(render(scene, below, &img) == SH_OK,
@@ -217,48 +227,78 @@ static void test_unwritable(const sh_scene *scene, const char *dir) {
   tu_check(c1.stores == c0.stores, "and nothing is stored");
   sh_image_free(&img);
   remove(file);
-  char got[4096];
-  /* A directory too long for the buffers turns the cache off instead of
-   * being cut to another directory (issue 11, fixed-size paths). */
-  char *lng = malloc(5000);
-  if (lng) {
-    memset(lng, 'a', 4999);
-    lng[0] = '/';
-    lng[4999] = '\0';
-    setenv("SHAFTS_PROGRAM_CACHE", lng, 1);
-    gs__program_cache_dir(got, sizeof got);
-    tu_check(got[0] == '\0', "a directory longer than PATH_MAX turns it off");
-    lng[sizeof got - GS__CACHE_NAME_ROOM - 1] = '\0';
-    setenv("SHAFTS_PROGRAM_CACHE", lng, 1);
-    gs__program_cache_dir(got, sizeof got);
-    tu_check(!strcmp(got, lng), "the longest directory that fits is kept");
-    free(lng);
-  }
+  free(file);
+  free(below);
   setenv("SHAFTS_PROGRAM_CACHE", "off", 1);
-  gs__program_cache_dir(got, sizeof got);
-  tu_check(got[0] == '\0', "SHAFTS_PROGRAM_CACHE=off turns it off");
+  tu_check(dir_is(NULL), "SHAFTS_PROGRAM_CACHE=off turns it off");
+  setenv("SHAFTS_PROGRAM_CACHE", "", 1);
+  tu_check(dir_is(NULL), "SHAFTS_PROGRAM_CACHE= turns it off");
   unsetenv("SHAFTS_PROGRAM_CACHE");
   setenv("XDG_CACHE_HOME", "/somewhere", 1);
-  gs__program_cache_dir(got, sizeof got);
-  tu_check(!strcmp(got, "/somewhere/shafts/programs"), "XDG_CACHE_HOME/shafts/programs");
+  tu_check(dir_is("/somewhere/shafts/programs"), "XDG_CACHE_HOME/shafts/programs");
   unsetenv("XDG_CACHE_HOME");
   setenv("HOME", "/home/someone", 1);
-  gs__program_cache_dir(got, sizeof got);
-  tu_check(!strcmp(got, "/home/someone/.cache/shafts/programs"), "else ~/.cache/shafts/programs");
+  tu_check(dir_is("/home/someone/.cache/shafts/programs"), "else ~/.cache/shafts/programs");
+}
+
+/* A cache directory longer than PATH_MAX (4096): 30 nested directories of
+ * 200 characters under the temporary directory, which open(2) refuses as
+ * one path (ENAMETOOLONG). The cache makes it, stores every program there
+ * and loads them again, bit for bit (issue 11: no path is cut or turns a
+ * feature off by its length). */
+static void test_long_dir(const sh_scene *scene, const char *dir) {
+  char part[201];
+  memset(part, 'd', 200);
+  part[200] = '\0';
+  char *lng = sh__printf_alloc("%s", dir);
+  for (int i = 0; lng && i < 30; i++) {
+    char *next = sh__printf_alloc("%s/%02d%s", lng, i, part + 2);
+    free(lng);
+    lng = next;
+  }
+  if (!lng) {
+    tu_check(0, "memory for a long directory");
+    return;
+  }
+  printf("a cache directory of %zu characters\n", strlen(lng));
+  tu_check(strlen(lng) > 6000, "the directory is longer than PATH_MAX");
+  setenv("SHAFTS_PROGRAM_CACHE", lng, 1);
+  tu_check(dir_is(lng), "and kept whole");
+  sh_image fresh = {0}, stored = {0}, cached = {0};
+  tu_check(render(scene, "off", &fresh) == SH_OK, "a render with the cache off");
+  gs__program_cache_counts c0 = gs__program_cache_counts_get();
+  tu_check(render(scene, lng, &stored) == SH_OK, "a render filling the long directory");
+  gs__program_cache_counts c1 = gs__program_cache_counts_get();
+  tu_check(render(scene, lng, &cached) == SH_OK, "a render from the long directory");
+  gs__program_cache_counts c2 = gs__program_cache_counts_get();
+  printf("long directory: %ld stored, then %ld hits\n", c1.stores - c0.stores,
+         c2.hits - c1.hits);
+  tu_check(c1.stores > c0.stores && c1.stores - c0.stores == c1.misses - c0.misses,
+           "every program is stored in the long directory");
+  tu_check(c2.hits - c1.hits == c1.stores - c0.stores && c2.misses == c1.misses,
+           "and every one loaded from it");
+  tu_check(same_image(&stored, &fresh) && same_image(&cached, &fresh),
+           "the same image, bit for bit");
+  int fd = gs__program_cache_open_dir(lng, 0);
+  tu_check(fd >= 0, "the long directory exists");
+  if (fd >= 0) close(fd);
+  sh_image_free(&fresh);
+  sh_image_free(&stored);
+  sh_image_free(&cached);
+  free(lng);
 }
 
 /* Removes the cache directory's files and the directory. */
 static void clean(const char *dir) {
-  char cmd[4200];
-  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-  if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  char *cmd = sh__printf_alloc("rm -rf '%s'", dir);
+  if (!cmd || system(cmd) != 0) fprintf(stderr, "could not remove %s\n", dir);
+  free(cmd);
 }
 
 int main(void) {
   const char *base = getenv("TMPDIR");
-  char dir[256];
-  snprintf(dir, sizeof dir, "%s/program_cache_test.XXXXXX", base && *base ? base : "/tmp");
-  if (!mkdtemp(dir)) {
+  char *dir = sh__printf_alloc("%s/program_cache_test.XXXXXX", base && *base ? base : "/tmp");
+  if (!dir || !mkdtemp(dir)) {
     perror("mkdtemp");
     return 1;
   }
@@ -266,9 +306,11 @@ int main(void) {
   if (!scene) return 1;
   test_renders(scene, dir);
   test_keys(dir);
+  test_long_dir(scene, dir);
   test_unwritable(scene, dir);
   sh_scene_free(scene);
   clean(dir);
+  free(dir);
   printf("%s\n", tu_failures ? "FAILED" : "all passed");
   return tu_failures ? 1 : 0;
 }
