@@ -83,6 +83,13 @@ def _times_text(run):
     return text
 
 
+def _failure_text(run):
+    """Why a run has no figures: "not exported: REASON" where the exporter
+    refuses the scene for the renderer, else "failed: ERROR"."""
+    why = run.get("error") or run.get("compare_error") or ""
+    return ("not exported: " if run.get("status") == "not_exported" else "failed: ") + why
+
+
 def renderer_index(results):
     return {r["name"]: r for r in results["renderers"]}
 
@@ -206,6 +213,12 @@ def _summary_table(results):
                 _time_to_cells(masked) if masked else '<td colspan=4 class="note">no light in view</td>',
                 _e(_verdict_of(s, name))))
             first = False
+        for name, why in s.get("not_exported", {}).items():
+            out.append('<tr><td>%s</td><td>%s</td><td colspan=9 class="note">not exported: %s'
+                       '</td></tr>' % ("" if not first else '<a href="#scene-%s">%s</a>'
+                                       % (_e(s["name"]), _e(s["name"])),
+                                       _e(rix[name]["label"]), _e(why)))
+            first = False
     out.append("</table>")
     return out
 
@@ -264,9 +277,10 @@ def _scene_section(s, results, base):
     for run in s["runs"]:
         label = _e(rix[run["renderer"]]["label"])
         if run["status"] != "ok" or not run.get("metrics"):
-            out.append('<tr><td>%s</td><td>%s</td><td colspan=%d class="fail">failed: %s</td></tr>'
+            out.append('<tr><td>%s</td><td>%s</td><td colspan=%d class="%s">%s</td></tr>'
                        % (label, _e(run["label"]), 12 if masked else 11,
-                          _e(run.get("error") or run.get("compare_error"))))
+                          "note" if run["status"] == "not_exported" else "fail",
+                          _e(_failure_text(run))))
             continue
         m = run["metrics"]
         mm = run.get("metrics_masked")
@@ -474,6 +488,10 @@ def summary_markdown(results):
                 *[cell(th) for th in THRESHOLDS],
                 best_text(tt) + (" [%s]" % best_text(masked) if masked else ""),
                 _verdict_of(s, name).replace("|", "/")))
+        for name, why in s.get("not_exported", {}).items():
+            out.append("| %s | %dx%d | %s | | | | – | not exported: %s |" % (
+                s["name"], s["width"], s["height"], rix[name]["label"],
+                (why or "").replace("|", "/")))
     out += ["", "## Every run", ""]
     for s in results["scenes"]:
         if s.get("error"):
@@ -491,9 +509,9 @@ def summary_markdown(results):
         for run in s["runs"]:
             mm = run.get("metrics")
             if run["status"] != "ok" or not mm:
-                out.append("| %s | %s | failed: %s | | | | | | |" % (
+                out.append("| %s | %s | %s | | | | | | |" % (
                     rix[run["renderer"]]["label"], run["label"],
-                    (run.get("error") or run.get("compare_error") or "").replace("|", "/")[:200]))
+                    _failure_text(run).replace("|", "/")[:200]))
                 continue
             masked = run.get("metrics_masked")
             out.append("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (

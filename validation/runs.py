@@ -30,6 +30,14 @@ class RunFailed(Exception):
     """A renderer failed: its message goes into the report."""
 
 
+class NotExported(RunFailed):
+    """The exporter refuses the scene for this renderer (a feature it does
+    not write yet, e.g. the atmosphere for Blender): not a failure of the
+    renderer, reported as "not exported" with the exporter's reason. The
+    run's key holds the exporter's SHA-256, so the run is tried again as
+    soon as a new exporter writes the scene."""
+
+
 def run_key(scene_key, renderer, version, params):
     """The cache key of one rendering."""
     blob = json.dumps({"format": CACHE_FORMAT, "scene": scene_key,
@@ -144,6 +152,10 @@ def execute(cache, key, describe, render, retry_failed=False, say=None):
             os.replace(out["image"], d / "image.exr")
             result.update({k: v for k, v in out.items() if k != "image"})
             result["status"] = "ok"
+        except NotExported as e:
+            result["status"] = "not_exported"
+            result["error"] = str(e)
+            log.write("NOT EXPORTED: %s\n" % e)
         except RunFailed as e:
             result["status"] = "failed"
             result["error"] = str(e)

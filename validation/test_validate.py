@@ -19,8 +19,9 @@ from .hard import cases as hard_cases
 from .hard import runner as hard_runner
 from .metrics import fmt_number, fmt_percent, fmt_seconds, pareto_front, time_to_reach
 from .progress import ProgressExecutor, fmt_left
-from .runs import Run, RunCache, RunFailed, execute, run_key
-from .scenes import light_mask, prepare_data, project, referenced_files, scaled_size
+from .runs import NotExported, Run, RunCache, RunFailed, execute, run_key
+from .scenes import (light_mask, mode_scale, prepare_data, project, referenced_files,
+                     scaled_size)
 from .svgplot import speed_error_svg
 
 HERE = Path(__file__).resolve().parent
@@ -313,6 +314,91 @@ class ReportTest(unittest.TestCase):
             self.assertIn("| image_1x1 | gl_shafts | | not rendered | " + why,
                           report.summary_markdown(results))
 
+
+    def test_not_exported_is_reported_as_such(self):
+        # A renderer whose exporter refuses the scene (the atmosphere for
+        # Blender) has a row saying so, with the reason, and no failure.
+        with tempfile.TemporaryDirectory() as d:
+            results = fake_results(d)
+            s = results["scenes"][0]
+            s["runs"].append({"renderer": "eevee", "label": "tile 2", "params": {},
+                              "status": "not_exported",
+                              "error": "the blender exporter does not write <x>"})
+            s["not_exported"] = {"eevee": "the blender exporter does not write <x>"}
+            report.write_html(results, d)
+            page = (Path(d) / "index.html").read_text()
+            self.assertIn("not exported: the blender exporter does not write &lt;x&gt;", page)
+            md = report.summary_markdown(results)
+            self.assertIn("| s | 4x3 | EEVEE | | | | – | not exported: the blender exporter "
+                          "does not write <x> |", md)
+            self.assertIn("| EEVEE | tile 2 | not exported: the blender", md)
+
+
+class SweepTest(unittest.TestCase):
+    """What the adapters render depends on the scene's medium, and the
+    exporter's refusal is "not exported", not a failure."""
+
+    def scene(self, d, medium):
+        data = {"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "fov_y_deg": 40,
+                           "width": 8, "height": 6}, "lights": []}
+        if medium:
+            data["medium"] = medium
+        return prepare_data("s", data, d, d)
+
+    def test_sweeps_by_medium(self):
+        ctx = renderers.Context(ROOT, ROOT / "build", mode="full")
+        gl, pov = renderers.GlShafts(), renderers.PovRay()
+        with tempfile.TemporaryDirectory() as d:
+            atmo = self.scene(d, {"type": "atmosphere"})
+            fog = self.scene(d, {"type": "height_fog"})
+            box = self.scene(d, {"sigma_s": [1, 1, 1]})
+            self.assertEqual((atmo.medium_type, fog.medium_type, box.medium_type),
+                             ("atmosphere", "height_fog", "homogeneous"))
+            # gl_shafts draws the atmosphere with 1 to 64 planes or spheres.
+            planes = [p.get("planes") for _, p in gl.settings(ctx, atmo)]
+            self.assertTrue(all(n is None or 1 <= n <= 64 for n in planes))
+            self.assertIn(800, [p.get("planes") for _, p in gl.settings(ctx, box)])
+            # POV-Ray's density media cost the square of the samples along
+            # a ray: no 255 x 4 there.
+            for scene in (atmo, fog):
+                self.assertTrue(all(p["intervals"] * p["samples"] <= 200
+                                    for _, p in pov.settings(ctx, scene)))
+            self.assertIn({"intervals": 255, "samples": 4},
+                          [p for _, p in pov.settings(ctx, box)])
+
+    def test_atmosphere_features_and_causes(self):
+        from . import verdicts
+        feats = verdicts.features(json.loads((ROOT / "scenes/sky_sunset.json").read_text()))
+        self.assertTrue({"medium:atmosphere", "phase:rayleigh",
+                         "phase:cornette_shanks"} <= feats)
+        self.assertIn("phase mixture", " ".join(verdicts.causes("povray", feats)))
+        self.assertIn("Cornette-Shanks phase exported as one HG lobe",
+                      verdicts.causes("cycles", feats))
+        fog = verdicts.features(json.loads((ROOT / "scenes/valley_fog.json").read_text()))
+        self.assertIn("medium:height_fog", fog)
+        self.assertNotIn("phase mixture", " ".join(verdicts.causes("povray", fog)))
+
+    def test_scene_modes(self):
+        self.assertEqual(mode_scale("scenes/sky_sunset.json", "quick", 0.5), 0.125)
+        self.assertEqual(mode_scale("scenes/valley_fog.json", "full", 1.0), 0.25)
+        self.assertEqual(mode_scale("scenes/teapot_spot.json", "quick", 0.5), 0.5)
+
+    def test_refusal_is_not_exported(self):
+        e = renderers._refused(RunFailed(
+            "scene_export exited with status 2: scene_export: error: s.json:3:9: medium.type: "
+            "the blender exporter does not write a medium of type 'atmosphere' yet; "
+            "lmm_tracer renders it"))
+        self.assertIsInstance(e, NotExported)
+        self.assertEqual(str(e), "the blender exporter does not write a medium of type "
+                                 "'atmosphere' yet")
+        other = RunFailed("blender exited with status 1: segfault")
+        self.assertIs(renderers._refused(other), other)
+        with tempfile.TemporaryDirectory() as d:
+            def render(work, log):
+                raise e
+            result = execute(RunCache(d), "k" * 64, {"renderer": "cycles"}, render)
+            self.assertEqual(result["status"], "not_exported")
+            self.assertEqual(RunCache(d).load("k" * 64)["status"], "not_exported")
 
 
 class SlurmPartsTest(unittest.TestCase):

@@ -47,7 +47,7 @@ from .progress import ProgressExecutor
 from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_image,
                       time_to_reach)
 from .runs import LocalExecutor, RunCache, plan_run
-from .scenes import find_scenes, light_mask, prepare_file, write_atomic
+from .scenes import find_scenes, light_mask, mode_scale, prepare_file, write_atomic
 from .svgplot import speed_error_svg
 from .twins import prepare_twin
 
@@ -107,8 +107,10 @@ class Validation:
         else:
             self.rendered += 1
             if result["status"] != "ok":
-                self.say("  %s: %s %s failed: %s" % (scene.name, adapter.name, label,
-                                                      result.get("error")))
+                self.say("  %s: %s %s %s: %s" % (
+                    scene.name, adapter.name, label,
+                    "not exported" if result["status"] == "not_exported" else "failed",
+                    result.get("error")))
         return result
 
     def reference_params(self):
@@ -244,6 +246,11 @@ class Validation:
         series, entry[time_key] = [], {}
         for adapter in self.adapters:
             runs = [r for r in entry["runs"] if r["renderer"] == adapter.name]
+            if runs and all(r["status"] == "not_exported" for r in runs):
+                # The exporter refuses the scene for this renderer: no
+                # curve, a row saying why (report.py).
+                entry.setdefault("not_exported", {})[adapter.name] = runs[0].get("error")
+                continue
             if not runs:
                 continue
             # A renderer timed both ways (gl_shafts) is two series: its warm
@@ -428,12 +435,16 @@ def main(argv=None):
         executor = LocalExecutor(ctx, cache, args.retry_failed)
     val = Validation(ctx, cache, report_dir, available, ref_spp, executor, say,
                      twins=not args.no_twins)
-    scale = args.scale if args.scale is not None else mode["scale"]
+    # --scale sets every scene's; else the mode's, or the scene's own
+    # in that mode (scenes.SCENE_MODES).
+    def scale_of(path):
+        return args.scale if args.scale is not None else mode_scale(path, args.mode,
+                                                                     mode["scale"])
     hard = [a for a in hard_wanted if a.missing(ctx) is None]
     # Every run of the validation, planned ahead: the Slurm executor renders
     # them first (the comparisons below then read them from the cache), and
     # the progress messages count them and estimate the time left.
-    planned = [r for path in scene_files for r in val.planned(path, scale)]
+    planned = [r for path in scene_files for r in val.planned(path, scale_of(path))]
     if not args.no_hard_cases:
         planned += hard_cases.planned_runs(ctx, hard, cache)
     if args.executor == "slurm":
@@ -455,10 +466,10 @@ def main(argv=None):
         write_atomic(report_dir / "summary.md", report.summary_markdown(results))
 
     for path in scene_files:
-        entry = val.scene(path, scale)
+        entry = val.scene(path, scale_of(path))
         results["scenes"].append(entry)
         save()
-        twin = val.twin(path, scale, entry) if val.twins else None
+        twin = val.twin(path, scale_of(path), entry) if val.twins else None
         if twin:
             results["scenes"].append(twin)
             save()
