@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <limits.h>
+#include <locale.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -19,6 +20,7 @@
 #include "sh_assimp.h"
 #include "sh_confine.h"
 #include "sh_file.h"
+#include "sh_off.h"
 #include "sh_ply.h"
 
 void sh_mesh_free(sh_mesh *mesh) {
@@ -164,10 +166,29 @@ static char *dir_of(const char *path) {
   return d;
 }
 
-/* A PLY file goes to sh_ply.h's reader, never to assimp's (which loops
- * forever on some files): *handled is set if `path` starts as a PLY file
- * does, and the status is then the load's. */
-static sh_status load_ply(const char *path, const char *root, long long size,
+/* The formats the core reads itself, never through assimp (whose
+ * readers of them loop forever or allocate what a header declares):
+ * sh_ply.h's for a file whose first non-blank bytes are "ply" (all assimp
+ * asks), sh_off.h's for a file named *.off or, when assimp claims no
+ * importer for its extension, whose first bytes are "off" (all assimp asks
+ * then). NULL for any other file. */
+typedef sh_status (*own_reader)(const char *path, const char *data, size_t size,
+                                sh_mesh *mesh, sh_error *err);
+static own_reader own_reader_of(const char *path, const unsigned char *head, size_t n) {
+  if (sh__ply_magic(head, n)) return sh__ply_read;
+  char ext[16];
+  sh_file_extension(path, ext, sizeof ext);
+  if (!strcmp(ext, "off")) return sh__off_read;
+  if (!sh__off_magic(head, n)) return NULL;
+  char dotted[sizeof ext + 1];
+  snprintf(dotted, sizeof dotted, ".%s", ext);
+  const sh__assimp *ai = sh__assimp_get(path, NULL);
+  return ai && ext[0] && ai->is_extension_supported(dotted) ? NULL : sh__off_read;
+}
+
+/* Loads `path` with the core's own reader if it is one of their formats:
+ * *handled is set then, and the status is the load's. */
+static sh_status load_own(const char *path, const char *root, long long size,
                           sh_mesh *mesh, int *handled, sh_error *err) {
   *handled = 0;
   FILE *f = sh_file_open_read(path);
@@ -176,7 +197,8 @@ static sh_status load_ply(const char *path, const char *root, long long size,
                         strerror(errno));
   unsigned char head[64];
   size_t n = fread(head, 1, sizeof head, f);
-  if (!sh__ply_magic(head, n)) {
+  own_reader read = own_reader_of(path, head, n);
+  if (!read) {
     fclose(f);
     return SH_OK;
   }
@@ -214,7 +236,17 @@ static sh_status load_ply(const char *path, const char *root, long long size,
     return sh_error_set(err, SH_ERR_IO, "cannot read mesh '%s'", path);
   }
   data[got] = '\0';
-  sh_status st = sh__ply_read(path, data, got, mesh, err);
+  /* The readers parse numbers with strtod: in the C locale, whatever the
+   * program's (sh_mesh_reader.h). */
+  locale_t c_locale = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+  if (!c_locale) {
+    free(data);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
+  locale_t old = uselocale(c_locale);
+  sh_status st = read(path, data, got, mesh, err);
+  uselocale(old);
+  freelocale(c_locale);
   free(data);
   return st;
 }
@@ -245,7 +277,7 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   if (rs != SH_OK)
     return rs;
   int handled;
-  rs = load_ply(path, root, size, mesh, &handled, err);
+  rs = load_own(path, root, size, mesh, &handled, err);
   if (handled || rs != SH_OK)
     return rs;
 

@@ -3,14 +3,13 @@
 #include "sh_ply.h"
 
 #include <limits.h>
-#include <locale.h>
-#include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+
+#include "sh_mesh_reader.h"
 
 typedef enum ply_type {
   PT_NONE, PT_I8, PT_U8, PT_I16, PT_U16, PT_I32, PT_U32, PT_F32, PT_F64
@@ -48,49 +47,15 @@ typedef struct ply_element {
 } ply_element;
 
 typedef struct reader {
-  const char *path, *data, *p, *end;
+  sh__mesh_reader m; /* the file, the cursor, the mesh being built */
   int format, swap;
-  long line; /* of the cursor, in ASCII data */
-  sh_error *err;
   ply_element *el;
   int nel;
-  /* The mesh being built. */
-  size_t nverts;
-  float *pos;
-  unsigned *tris;
-  size_t ntris, cap;
-  long long *list; /* one list's values */
-  size_t list_cap;
 } reader;
 
 /* The error, located at a line (> 0) or, in binary data, at the cursor. */
-static sh_status fail(reader *r, long line, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-static sh_status fail(reader *r, long line, const char *fmt, ...) {
-  char what[SH_ERROR_MSG_MAX];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(what, sizeof what, fmt, ap);
-  va_end(ap);
-  if (line > 0)
-    sh_error_set(r->err, SH_ERR_MESH, "cannot load mesh '%s': line %ld: %s",
-                 r->path, line, what);
-  else
-    sh_error_set(r->err, SH_ERR_MESH, "cannot load mesh '%s': byte %zu: %s",
-                 r->path, (size_t)(r->p - r->data), what);
-  if (r->err) {
-    snprintf(r->err->file, sizeof r->err->file, "%s", r->path);
-    r->err->line = line > 0 ? (int)(line < INT_MAX ? line : INT_MAX) : 0;
-  }
-  return SH_ERR_MESH;
-}
-
-static int is_space(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
-}
+#define fail(r, ...) sh__mesh_reader_fail(&(r)->m, __VA_ARGS__)
+#define is_space sh__mesh_is_space
 
 int sh__ply_magic(const unsigned char *head, size_t n) {
   size_t i = 0;
@@ -173,7 +138,7 @@ static sh_status add_property(reader *r, long line, token *t, int nt) {
       return fail(r, line, "element '%s' has property '%.*s' twice", e->name,
                   (int)name.n, name.s);
   ply_prop *np = realloc(e->props, (size_t)(e->nprops + 1) * sizeof *np);
-  if (!np) return sh_error_set(r->err, SH_ERR_NOMEM, "out of memory");
+  if (!np) return sh_error_set(r->m.err, SH_ERR_NOMEM, "out of memory");
   e->props = np;
   e->props[e->nprops++] = pr;
   return SH_OK;
@@ -182,14 +147,11 @@ static sh_status add_property(reader *r, long line, token *t, int nt) {
 static sh_status add_element(reader *r, long line, token *t, int nt) {
   if (nt != 3) return fail(r, line, "an element is 'element NAME COUNT'");
   size_t count = 0;
-  for (size_t i = 0; i < t[2].n; i++) {
-    char c = t[2].s[i];
-    if (c < '0' || c > '9')
-      return fail(r, line, "the count '%.*s' is not a whole number", (int)t[2].n, t[2].s);
-    if (count > (SIZE_MAX - 9) / 10)
-      return fail(r, line, "the count '%.*s' is too large", (int)t[2].n, t[2].s);
-    count = count * 10 + (size_t)(c - '0');
-  }
+  int whole = sh__mesh_whole(t[2].s, t[2].n, &count);
+  if (whole == 0)
+    return fail(r, line, "the count '%.*s' is not a whole number", (int)t[2].n, t[2].s);
+  if (whole < 0)
+    return fail(r, line, "the count '%.*s' is too large", (int)t[2].n, t[2].s);
   int kind = tok_is(t[1], "vertex") ? EL_VERTEX
              : tok_is(t[1], "face") ? EL_FACE
              : tok_is(t[1], "tristrips") ? EL_STRIPS
@@ -198,12 +160,12 @@ static sh_status add_element(reader *r, long line, token *t, int nt) {
     if (kind != EL_OTHER && r->el[i].kind == kind)
       return fail(r, line, "element '%.*s' comes twice", (int)t[1].n, t[1].s);
   ply_element *ne = realloc(r->el, (size_t)(r->nel + 1) * sizeof *ne);
-  if (!ne) return sh_error_set(r->err, SH_ERR_NOMEM, "out of memory");
+  if (!ne) return sh_error_set(r->m.err, SH_ERR_NOMEM, "out of memory");
   r->el = ne;
   ply_element *e = &r->el[r->nel];
   memset(e, 0, sizeof *e);
   e->name = malloc(t[1].n + 1);
-  if (!e->name) return sh_error_set(r->err, SH_ERR_NOMEM, "out of memory");
+  if (!e->name) return sh_error_set(r->m.err, SH_ERR_NOMEM, "out of memory");
   memcpy(e->name, t[1].s, t[1].n);
   e->name[t[1].n] = '\0';
   e->kind = kind;
@@ -213,21 +175,21 @@ static sh_status add_element(reader *r, long line, token *t, int nt) {
   return SH_OK;
 }
 
-/* Parses the header; leaves r->p at the first byte of the data. */
+/* Parses the header; leaves r->m.p at the first byte of the data. */
 static sh_status parse_header(reader *r) {
-  const char *s = r->data;
+  const char *s = r->m.data;
   long line = 0;
   int have_magic = 0, have_format = 0;
   for (;;) {
-    if (s >= r->end)
+    if (s >= r->m.end)
       return fail(r, line > 0 ? line : 1,
                   "the header ends at the end of the file with no 'end_header' line");
-    const char *nl = memchr(s, '\n', (size_t)(r->end - s));
-    const char *e = nl ? nl : r->end;
+    const char *nl = memchr(s, '\n', (size_t)(r->m.end - s));
+    const char *e = nl ? nl : r->m.end;
     line++;
     token t[MAX_TOKENS];
     int nt = split(s, e, t);
-    s = nl ? nl + 1 : r->end;
+    s = nl ? nl + 1 : r->m.end;
     if (nt == 0) continue; /* a blank line */
     if (!have_magic) {
       if (nt != 1 || t[0].n != 3 || strncasecmp(t[0].s, "ply", 3))
@@ -239,8 +201,8 @@ static sh_status parse_header(reader *r) {
     if (tok_is(t[0], "end_header")) {
       if (nt != 1) return fail(r, line, "'end_header' stands alone on its line");
       if (!have_format) return fail(r, line, "the header has no 'format' line");
-      r->p = s;
-      r->line = line + 1;
+      r->m.p = s;
+      r->m.line = line + 1;
       return SH_OK;
     }
     sh_status st = SH_OK;
@@ -268,7 +230,7 @@ static sh_status parse_header(reader *r) {
 /* Checks what the header declares against what the file can hold, before
  * anything is allocated or looped over. */
 static sh_status check_counts(reader *r) {
-  size_t avail = (size_t)(r->end - r->p), need = 0;
+  size_t avail = (size_t)(r->m.end - r->m.p), need = 0;
   int vertex = -1;
   for (int i = 0; i < r->nel; i++) {
     ply_element *e = &r->el[i];
@@ -297,10 +259,7 @@ static sh_status check_counts(reader *r) {
   for (int k = 0; k < v->nprops; k++) have[v->props[k].role] = 1;
   if (v->count && !(have[ROLE_X] && have[ROLE_Y] && have[ROLE_Z]))
     return fail(r, v->line, "element 'vertex' lacks property x, y or z");
-  if (v->count > (size_t)INT_MAX / 3)
-    return fail(r, v->line, "too many vertices (%zu)", v->count);
-  r->nverts = v->count;
-  return SH_OK;
+  return sh__mesh_reader_vertices(&r->m, v->count, v->line);
 }
 
 /* ---- The data ---- */
@@ -309,17 +268,17 @@ static sh_status check_counts(reader *r) {
 static sh_status read_value(reader *r, ply_type t, const char *what, double *out) {
   if (r->format != FMT_ASCII) {
     size_t n = TYPE_SIZE[t];
-    if ((size_t)(r->end - r->p) < n)
+    if ((size_t)(r->m.end - r->m.p) < n)
       return fail(r, 0, "the file ends inside %s", what);
     unsigned char b[8];
-    memcpy(b, r->p, n);
+    memcpy(b, r->m.p, n);
     if (r->swap)
       for (size_t i = 0; i < n / 2; i++) {
         unsigned char c = b[i];
         b[i] = b[n - 1 - i];
         b[n - 1 - i] = c;
       }
-    r->p += n;
+    r->m.p += n;
     switch (t) {
     case PT_I8: { int8_t x; memcpy(&x, b, 1); *out = x; break; }
     case PT_U8: *out = b[0]; break;
@@ -332,75 +291,52 @@ static sh_status read_value(reader *r, ply_type t, const char *what, double *out
     }
     return SH_OK;
   }
-  while (r->p < r->end && is_space(*r->p))
-    if (*r->p++ == '\n') r->line++;
-  if (r->p == r->end) return fail(r, r->line, "the file ends before %s", what);
-  const char *b = r->p;
-  while (r->p < r->end && !is_space(*r->p)) r->p++;
+  while (r->m.p < r->m.end && is_space(*r->m.p))
+    if (*r->m.p++ == '\n') r->m.line++;
+  if (r->m.p == r->m.end) return fail(r, r->m.line, "the file ends before %s", what);
+  const char *b = r->m.p;
+  while (r->m.p < r->m.end && !is_space(*r->m.p)) r->m.p++;
   if (t >= PT_F32) {
     char *stop;
     *out = strtod(b, &stop); /* the data is followed by a NUL (sh_ply.h) */
-    if (stop != r->p)
-      return fail(r, r->line, "'%.*s' in %s is not a number", (int)(r->p - b), b, what);
+    if (stop != r->m.p)
+      return fail(r, r->m.line, "'%.*s' in %s is not a number", (int)(r->m.p - b), b, what);
     return SH_OK;
   }
   const char *q = b;
-  int neg = q < r->p && *q == '-';
-  if (q < r->p && (*q == '-' || *q == '+')) q++;
+  int neg = q < r->m.p && *q == '-';
+  if (q < r->m.p && (*q == '-' || *q == '+')) q++;
   double v = 0;
-  if (q == r->p) return fail(r, r->line, "'%.*s' in %s is not a whole number", (int)(r->p - b), b, what);
-  for (; q < r->p; q++) {
+  if (q == r->m.p) return fail(r, r->m.line, "'%.*s' in %s is not a whole number", (int)(r->m.p - b), b, what);
+  for (; q < r->m.p; q++) {
     if (*q < '0' || *q > '9')
-      return fail(r, r->line, "'%.*s' in %s is not a whole number", (int)(r->p - b), b, what);
+      return fail(r, r->m.line, "'%.*s' in %s is not a whole number", (int)(r->m.p - b), b, what);
     v = v * 10 + (*q - '0');
     if (v > 1e10) break; /* out of every integer type's range */
   }
   *out = neg ? -v : v;
   if (*out < TYPE_MIN[t] || *out > TYPE_MAX[t])
-    return fail(r, r->line, "'%.*s' in %s is out of its type's range", (int)(r->p - b), b, what);
+    return fail(r, r->m.line, "'%.*s' in %s is out of its type's range", (int)(r->m.p - b), b, what);
   return SH_OK;
 }
 
-static sh_status add_triangle(reader *r, long long a, long long b, long long c) {
-  if (a == b || b == c || a == c) return SH_OK; /* degenerate */
-  if (r->ntris == r->cap) {
-    size_t cap = r->cap ? 2 * r->cap : 256;
-    if (cap > (size_t)INT_MAX / 3)
-      return fail(r, r->format == FMT_ASCII ? r->line : 0, "too many triangles");
-    unsigned *nt = realloc(r->tris, cap * 3 * sizeof *nt);
-    if (!nt) return sh_error_set(r->err, SH_ERR_NOMEM, "out of memory");
-    r->tris = nt;
-    r->cap = cap;
-  }
-  unsigned *t = r->tris + 3 * r->ntris++;
-  t[0] = (unsigned)a, t[1] = (unsigned)b, t[2] = (unsigned)c;
-  return SH_OK;
-}
-
-/* Turns one index list (r->list, n values) into triangles. */
+/* Turns one index list (r->m.list, n values) into triangles. */
 static sh_status emit(reader *r, int kind, size_t n, long line) {
-  for (size_t i = 0; i < n; i++) {
-    long long x = r->list[i];
-    if (kind == EL_STRIPS && x == -1) continue;
-    if (x < 0 || (size_t)x >= r->nverts)
-      return fail(r, line, "a %s refers to vertex %lld of %zu (counted from 0)",
-                  kind == EL_STRIPS ? "triangle strip" : "face", x, r->nverts);
-  }
-  sh_status st = SH_OK;
-  if (kind == EL_FACE) {
-    for (size_t k = 1; k + 1 < n && st == SH_OK; k++)
-      st = add_triangle(r, r->list[0], r->list[k], r->list[k + 1]);
-    return st;
-  }
+  sh__mesh_reader *m = &r->m;
+  sh_status st = sh__mesh_reader_check(m, n, kind == EL_STRIPS,
+                                       kind == EL_STRIPS ? "triangle strip" : "face", line);
+  if (st != SH_OK) return st;
+  if (kind == EL_FACE) return sh__mesh_reader_fan(m, n, line);
   size_t j = 0; /* position in the current strip */
   for (size_t i = 0; i < n && st == SH_OK; i++) {
-    if (r->list[i] == -1) {
+    if (m->list[i] == -1) {
       j = 0;
       continue;
     }
     if (++j < 3) continue;
-    long long a = r->list[i - 2], b = r->list[i - 1], c = r->list[i];
-    st = j % 2 ? add_triangle(r, a, b, c) : add_triangle(r, b, a, c);
+    long long a = m->list[i - 2], b = m->list[i - 1], c = m->list[i];
+    st = j % 2 ? sh__mesh_reader_triangle(m, a, b, c, line)
+               : sh__mesh_reader_triangle(m, b, a, c, line);
   }
   return st;
 }
@@ -412,24 +348,19 @@ static sh_status read_list(reader *r, const ply_element *e, const ply_prop *pr,
   double c;
   sh_status st = read_value(r, pr->count_type, what, &c);
   if (st != SH_OK) return st;
-  long line = r->line; /* the count's */
-  if (c < 0) return fail(r, r->format == FMT_ASCII ? r->line : 0, "a list's count is negative");
-  size_t n = (size_t)c, left = (size_t)(r->end - r->p);
+  long line = r->m.line; /* the count's */
+  if (c < 0) return fail(r, r->format == FMT_ASCII ? r->m.line : 0, "a list's count is negative");
+  size_t n = (size_t)c, left = (size_t)(r->m.end - r->m.p);
   /* Each entry takes a byte at least (ASCII) or its size (binary). */
   if (n > left / (r->format == FMT_ASCII ? 1 : TYPE_SIZE[pr->type]))
     return fail(r, r->format == FMT_ASCII ? line : 0,
                 "a list of element '%s' counts %zu entries, more than the %zu bytes "
                 "left hold", e->name, n, left);
-  if (pr->role == ROLE_INDICES && n > r->list_cap) {
-    long long *nl = realloc(r->list, n * sizeof *nl);
-    if (!nl) return sh_error_set(r->err, SH_ERR_NOMEM, "out of memory");
-    r->list = nl;
-    r->list_cap = n;
-  }
+  if (pr->role == ROLE_INDICES && (st = sh__mesh_reader_list(&r->m, n)) != SH_OK) return st;
   for (size_t i = 0; i < n; i++) {
     double v;
     if ((st = read_value(r, pr->type, what, &v)) != SH_OK) return st;
-    if (pr->role == ROLE_INDICES) r->list[i] = (long long)v;
+    if (pr->role == ROLE_INDICES) r->m.list[i] = (long long)v;
   }
   return pr->role == ROLE_INDICES ? emit(r, e->kind, n, line) : SH_OK;
 }
@@ -449,64 +380,33 @@ static sh_status read_data(reader *r) {
           snprintf(what, sizeof what, "element '%s' instance %zu", e->name, k);
           double v;
           st = read_value(r, pr->type, what, &v);
-          if (st == SH_OK && pr->role >= ROLE_X && pr->role <= ROLE_Z) {
-            float f = (float)v;
-            if (!isfinite(f))
-              return fail(r, r->format == FMT_ASCII ? r->line : 0,
-                          "vertex %zu is not a finite number (NaN, infinite or "
-                          "beyond single precision's 3.4e38)", k);
-            r->pos[3 * k + (size_t)(pr->role - ROLE_X)] = f;
-          }
+          if (st == SH_OK && pr->role >= ROLE_X && pr->role <= ROLE_Z)
+            st = sh__mesh_reader_coord(&r->m, k, pr->role - ROLE_X, v,
+                                       r->format == FMT_ASCII ? r->m.line : 0);
         }
         if (st != SH_OK) return st;
       }
     }
   }
-  if (r->ntris == 0)
-    return sh_error_set(r->err, SH_ERR_MESH, "cannot load mesh '%s': it has no triangles",
-                        r->path);
   return SH_OK;
 }
 
 sh_status sh__ply_read(const char *path, const char *data, size_t size,
                        sh_mesh *mesh, sh_error *err) {
-  memset(mesh, 0, sizeof *mesh);
   reader r;
   memset(&r, 0, sizeof r);
-  r.path = path;
-  r.data = r.p = data;
-  r.end = data + size;
-  r.err = err;
+  sh__mesh_reader_init(&r.m, path, data, size, err);
   const union { uint16_t u; unsigned char c[2]; } probe = {1};
-  locale_t c_locale = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-  if (!c_locale) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  locale_t old = uselocale(c_locale);
   sh_status st = parse_header(&r);
   if (st == SH_OK) {
     r.swap = r.format == (probe.c[0] ? FMT_BE : FMT_LE);
     st = check_counts(&r);
   }
-  if (st == SH_OK) {
-    r.pos = calloc(r.nverts ? 3 * r.nverts : 1, sizeof *r.pos);
-    if (!r.pos) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  }
   if (st == SH_OK) st = read_data(&r);
-  uselocale(old);
-  freelocale(c_locale);
   for (int i = 0; i < r.nel; i++) {
     free(r.el[i].name);
     free(r.el[i].props);
   }
   free(r.el);
-  free(r.list);
-  if (st != SH_OK) {
-    free(r.pos);
-    free(r.tris);
-    return st;
-  }
-  mesh->nverts = (int)r.nverts;
-  mesh->ntris = (int)r.ntris;
-  mesh->positions = r.pos;
-  mesh->indices = r.tris;
-  return SH_OK;
+  return sh__mesh_reader_finish(&r.m, st, mesh);
 }

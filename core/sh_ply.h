@@ -36,7 +36,8 @@ int sh__ply_magic(const unsigned char *head, size_t n);
 
 /* Reads the PLY file `path`, whose `size` bytes are `data` (with a NUL
  * after them), into `mesh` (zeroed first; the caller frees it with
- * sh_mesh_free). SH_ERR_MESH with the place for a malformed or truncated
+ * sh_mesh_free), in the C numeric locale, which the caller sets
+ * (sh_mesh_reader.h). SH_ERR_MESH with the place for a malformed or truncated
  * file, a count the file's size cannot hold, an index out of range, a
  * vertex that is not a finite float, or no triangles; SH_ERR_NOMEM. */
 sh_status sh__ply_read(const char *path, const char *data, size_t size,

@@ -6,81 +6,14 @@
  * file cannot hold), which must fail at once with a located error. CTest
  * gives this test 60 s (core/CMakeLists.txt); each of those files took
  * assimp forever, or over 10 s and 2 GB. */
-#include "sh_mesh.h"
-#include "sh_test.h"
-
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <time.h>
-#include <unistd.h>
-
-static char tmpdir[256];
-static char path[512];
-
-/* Writes n bytes to tmpdir/name; returns the path (static). */
-static const char *write_bytes(const char *name, const void *data, size_t n) {
-  snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-  FILE *f = fopen(path, "wb");
-  if (f) {
-    fwrite(data, 1, n, f);
-    fclose(f);
-  }
-  return path;
-}
-
-static const char *write_text(const char *name, const char *text) {
-  return write_bytes(name, text, strlen(text));
-}
-
-/* Loads name (written from text) and expects n triangles. */
-static void expect_tris(const char *name, const char *text, int ntris, int nverts) {
-  sh_mesh m;
-  sh_error err;
-  sh_status s = sh_mesh_load(write_text(name, text), NULL, &m, &err);
-  if (s != SH_OK) fprintf(stderr, "%s: %s\n", name, err.message);
-  SH_CHECK(s == SH_OK);
-  if (s == SH_OK) {
-    if (m.ntris != ntris || m.nverts != nverts)
-      fprintf(stderr, "%s: %d triangles, %d vertices; want %d, %d\n", name,
-              m.ntris, m.nverts, ntris, nverts);
-    SH_CHECK(m.ntris == ntris && m.nverts == nverts);
-    for (int i = 0; i < 3 * m.ntris; i++) SH_CHECK(m.indices[i] < (unsigned)m.nverts);
-  }
-  sh_mesh_free(&m);
-}
-
-/* Loads data and expects SH_ERR_MESH whose message holds `want`, in well
- * under a second. */
-static void expect_error(const char *name, const void *data, size_t n,
-                         const char *want) {
-  sh_mesh m;
-  sh_error err;
-  struct timespec t0, t1;
-  clock_gettime(CLOCK_MONOTONIC, &t0);
-  sh_status s = sh_mesh_load(write_bytes(name, data, n), NULL, &m, &err);
-  clock_gettime(CLOCK_MONOTONIC, &t1);
-  double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
-  int ok = s == SH_ERR_MESH && strstr(err.message, want) && strstr(err.message, name);
-  if (!ok)
-    fprintf(stderr, "%s: status %d, '%s'; want SH_ERR_MESH naming the file and '%s'\n",
-            name, s, s ? err.message : "", want);
-  SH_CHECK(ok);
-  SH_CHECK(m.positions == NULL && m.ntris == 0);
-  if (secs > 1.0) fprintf(stderr, "%s: %.2f s\n", name, secs);
-  SH_CHECK(secs < 1.0);
-}
-
-static void expect_text(const char *name, const char *text, const char *want) {
-  expect_error(name, text, strlen(text), want);
-}
+#include "sh_mesh_test_util.h"
 
 static const char *const HEAD =
     "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
     "property float z\n";
 
 int main(void) {
-  if (!sh_test_tmpdir(tmpdir, sizeof tmpdir, "sh_ply_test")) return EXIT_FAILURE;
+  if (!sh_test_tmpdir(sh_mesh_test_dir, sizeof sh_mesh_test_dir, "sh_ply_test")) return EXIT_FAILURE;
   char text[2048];
 
   /* ASCII: a quad (two triangles), comments, an element and properties to
@@ -156,18 +89,10 @@ int main(void) {
   /* The input mesh_fuzz found (fuzz/known/ply_hang; its first byte picks
    * the format in the harness): a header with no end_header line, on
    * which assimp never returned. */
-  const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char known[1024];
-  snprintf(known, sizeof known, "%s/fuzz/known/ply_hang", src ? src : "..");
-  FILE *f = fopen(known, "rb");
-  SH_CHECK(f != NULL);
-  if (f) {
-    unsigned char buf[4096];
-    size_t n = fread(buf, 1, sizeof buf, f);
-    fclose(f);
-    SH_CHECK(n > 1);
-    if (n > 1) expect_error("ply_hang.ply", buf + 1, n - 1, "line 7: unknown header keyword 'e'");
-  }
+  unsigned char buf[4096];
+  size_t n = read_known("ply_hang", buf, sizeof buf);
+  SH_CHECK(n > 1);
+  if (n > 1) expect_error("ply_hang.ply", buf + 1, n - 1, "line 7: unknown header keyword 'e'");
   /* Its kind: headers that end without end_header. */
   expect_error("no_end.ply", HEAD, strlen(HEAD), "no 'end_header' line");
   expect_text("magic_only.ply", "ply\n", "no 'end_header' line");

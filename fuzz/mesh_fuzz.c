@@ -1,7 +1,7 @@
 /* libFuzzer harness of the mesh-loading path (sh_mesh_load: the confined
- * assimp file system, the import, the finiteness checks, and sh_ply.h's
- * reader for PLY files): the first byte picks the format (OBJ, PLY, glTF,
- * STL, OFF), the rest is the file,
+ * assimp file system, the import, the finiteness checks, and the core's
+ * own readers of PLY and OFF files, sh_ply.h and sh_off.h): the first byte
+ * picks the format (OBJ, PLY, glTF, STL, OFF), the rest is the file,
  * written into a directory of the process's own and loaded from there.
  * Seeds: fuzz/corpus/mesh (docs/fuzzing.md). */
 #include <stddef.h>
