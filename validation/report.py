@@ -451,8 +451,11 @@ def summary_markdown(results):
            % (results["mode"], results["date"], m.get("cpu", "unknown CPU"), m.get("threads", 0),
               fmt_seconds(results.get("render_seconds")),
               fmt_seconds(results.get("elapsed_seconds")), results.get("rendered", 0),
-              results.get("cached", 0), results["reference_spp"]), "",
-           "## Renderers", "", "| renderer | status | version |", "|---|---|---|"]
+              results.get("cached", 0), results["reference_spp"]), ""]
+    if results.get("command"):
+        out += ["Command: `%s`%s." % (results["command"], ", at %s" % results["commit"]
+                                      if results.get("commit") else ""), ""]
+    out += ["## Renderers", "", "| renderer | status | version |", "|---|---|---|"]
     for r in results["renderers"]:
         out.append("| %s | %s | %s |" % (r["label"], "available" if r["available"]
                                           else "skipped: " + r["note"],

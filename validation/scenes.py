@@ -221,9 +221,9 @@ def prepare_file(source, cache_dir, scale=None):
 # the ray (docs/validation.md, "The renderers and their sweeps"). So the
 # quick mode renders them at 40x30, where each renderer takes seconds
 # (measured under load: the references at 512 spp 10 s, 4.8 s and 0.5 s,
-# POV-Ray's quick sweep 1.5 s to 5 s), and the full mode at 80x60 (the
+# POV-Ray's quick sweep 1.5 s to 5 s), and the full mode at 64x48 (the
 # sky's reference at 4096 spp alone would take over an hour at 320x240).
-SCENE_MODES = {name: {"quick": {"scale": 0.125}, "full": {"scale": 0.25}}
+SCENE_MODES = {name: {"quick": {"scale": 0.125}, "full": {"scale": 0.2}}
                for name in ("sky_sunset", "earth_from_space", "valley_fog")}
 
 

@@ -378,9 +378,19 @@ class SweepTest(unittest.TestCase):
         self.assertIn("medium:height_fog", fog)
         self.assertNotIn("phase mixture", " ".join(verdicts.causes("povray", fog)))
 
+    def test_command_line_in_summary(self):
+        from . import validate
+        self.assertEqual(validate.command_line(["--full", "--scenes", "a b.json", "c.json"]),
+                         "python3 -m validation.validate --full --scenes 'a b.json' c.json")
+        with tempfile.TemporaryDirectory() as d:
+            results = fake_results(d)
+            results.update(command="python3 -m validation.validate --full", commit="abc123")
+            self.assertIn("Command: `python3 -m validation.validate --full`, at abc123.",
+                          report.summary_markdown(results))
+
     def test_scene_modes(self):
         self.assertEqual(mode_scale("scenes/sky_sunset.json", "quick", 0.5), 0.125)
-        self.assertEqual(mode_scale("scenes/valley_fog.json", "full", 1.0), 0.25)
+        self.assertEqual(mode_scale("scenes/valley_fog.json", "full", 1.0), 0.2)
         self.assertEqual(mode_scale("scenes/teapot_spot.json", "quick", 0.5), 0.5)
 
     def test_refusal_is_not_exported(self):

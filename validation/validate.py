@@ -289,6 +289,25 @@ class Validation:
             entry["self_check_spp"] = top["params"]["spp"]
 
 
+def command_line(argv):
+    """The validation's command line as a user would type it."""
+    args = sys.argv[1:] if argv is None else list(argv)
+    return " ".join(["python3 -m validation.validate"] + [
+        a if re.fullmatch(r"[\w./,=:+-]+", a) else "'%s'" % a.replace("'", "'\\''")
+        for a in args])
+
+
+def source_commit(root):
+    """The source tree's commit (git describe --always --dirty), or None."""
+    try:
+        out = subprocess.run(["git", "-C", str(root), "describe", "--always", "--dirty"],
+                             stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=30,
+                             check=False)
+    except (OSError, subprocess.TimeoutExpired):
+        return None
+    return out.stdout.decode().strip() or None
+
+
 def render_seconds(results):
     """The wall time of every run of the report, rendered now or cached:
     what the validation costs from an empty cache, comparisons aside."""
@@ -425,6 +444,7 @@ def main(argv=None):
     ref_spp = args.ref_spp or mode["ref_spp"]
     results = {"mode": args.mode, "date": time.strftime("%Y-%m-%d %H:%M:%S"),
                "machine": machine(), "reference_spp": ref_spp, "lit": LIT,
+               "command": command_line(argv), "commit": source_commit(root),
                "renderers": infos, "scenes": [], "hard_cases": None}
     if args.executor == "slurm":
         executor = slurm.SlurmExecutor(
