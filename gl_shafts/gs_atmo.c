@@ -65,7 +65,6 @@ static sh_status refuse(const sh_scene *scene, const char *path, sh_error *err,
 }
 
 sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err) {
-  if (scene->nshapes > 0) return refuse(scene, "shapes", err, "shapes");
   for (int i = 0; i < scene->nlights; i++)
     if (scene->lights[i].type != SH_LIGHT_DIRECTIONAL) {
       char path[32];

@@ -31,10 +31,9 @@ typedef struct gs__atmo {
 void gs__atmo_from_medium(const sh_medium *m, gs__atmo *a);
 
 /* What gl_shafts draws of a scene whose medium is an atmosphere: the air,
- * the ground and the sun's disk under directional lights. SH_ERR_SCENE,
- * located at the key, for shapes (gl_shafts does not yet draw surfaces
- * nor their shadows in an atmosphere: lmm_tracer renders them) and for
- * point and spot lights; SH_OK otherwise. */
+ * the ground and the sun's disk under directional lights, and shapes
+ * (gs_atmo_shapes.h). SH_ERR_SCENE, located at the key, for point and
+ * spot lights; SH_OK otherwise. */
 sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err);
 
 /* The relative densities at height h: Rayleigh's exp(-h / H_R), Mie's

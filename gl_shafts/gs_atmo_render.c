@@ -1,5 +1,7 @@
 #include "gs_atmo_render.h"
 
+#include "gs_atmo_shapes.h"
+
 #include "shaders/gs_shared.h"
 
 #include <math.h>
@@ -90,24 +92,23 @@ static eye_frame eye_of(const gs__atmo *a, sh_vec3 eye) {
   return e;
 }
 
-/* Starts a pass's parameters: the camera's (gs__params_begin) and the
- * atmosphere's, for the sun `l` (NULL: none); the caller adds u_depth
+/* Starts a pass's parameters: the camera's (gs__params_begin), the
+ * atmosphere's and the shapes' (gs_atmo_shapes.h), for the sun `l` (NULL:
+ * none) with its setup ls and shadow map sm (NULL: none); the caller adds u_depth
  * (screen.vert's). */
 static gs__params *atmo_params(const gs__atmo_gl *g, const gs__frame *fr,
                                const eye_frame *e, const sh_light *l,
+                               const gs__light_setup *ls, const gs__shadow_map *sm,
                                const char *extra) {
   const gs__atmo *a = &g->atmo;
   char defs[256];
   snprintf(defs, sizeof defs, "#define MIE_PHASE %d\n#define EYE_OUTSIDE %d\n%s",
            mie_phase(&a->mie_phase), e->re > a->shell.r_top, extra);
-  gs__params *p = gs__params_begin(fr, NULL, defs);
-  double rg = a->shell.r_ground, rt = a->shell.r_top;
+  gs__params *p = gs__params_begin(fr, ls, defs);
+  gs__atmo_shapes_params(p, fr, ls, sm);
   gs__param_v3(p, "u_up", e->up);
   gs__param_f(p, "u_re", e->re);
   gs__param_f(p, "u_ce", e->ce);
-  gs__param_f(p, "u_rg", rg);
-  gs__param_f(p, "u_rt", rt);
-  gs__param_f(p, "u_hh", sqrt((rt - rg) * (rt + rg)));
   gs__param_v3(p, "u_ray_s", a->rayleigh_s);
   gs__param_f(p, "u_ray_h", a->rayleigh_h);
   gs__param_v3(p, "u_mie_s", a->mie_s);
@@ -115,7 +116,6 @@ static gs__params *atmo_params(const gs__atmo_gl *g, const gs__frame *fr,
   gs__param_f(p, "u_mie_g", a->mie_phase.g);
   gs__param_v3(p, "u_albedo", a->ground_albedo);
   gs__param_v3(p, "u_background", fr->scene->background);
-  gs__param_2f(p, "u_table_size", g->table.n_mu, g->table.n_r);
   /* Without a sun (the background alone) any direction, no light. */
   sh_vec3 to_sun = l ? sh_normalize(sh_neg(l->direction)) : sh_v3(0, 1, 0);
   gs__param_v3(p, "u_lsun", to_sun);
@@ -167,7 +167,9 @@ static void draw_layers(GLuint prog, const gs__target *t, const double *layer, i
  * layers drawn at full resolution. The first sun's compose pass replaces
  * the image. */
 static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target *t,
-                          const eye_frame *e, const sh_light *l, int first,
+                          const eye_frame *e, const sh_light *l,
+                          const gs__light_setup *ls, const gs__shadow_map *sm,
+                          int first,
                           const double *layer, int n, int step, sh_error *err) {
   GLuint layers = 0, prog;
   sh_status st;
@@ -176,7 +178,7 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
   if (step > 1) {
     int lw = (t->width + step - 1) / step, lh = (t->height + step - 1) / step;
     if ((st = lattice_fit(g, lw, lh, err)) != SH_OK) return st;
-    p = atmo_params(g, fr, e, l, "");
+    p = atmo_params(g, fr, e, l, ls, sm, "");
     gs__param_f(p, "u_depth", 0.0);
     st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
                          &layers, err);
@@ -195,7 +197,7 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
     char defs[80];
     snprintf(defs, sizeof defs, "#define FIRST %d\n#define LATTICE %d\n#define FIXUP %d\n",
              first, step > 1, fix);
-    p = atmo_params(g, fr, e, l, defs);
+    p = atmo_params(g, fr, e, l, ls, sm, defs);
     gs__param_f(p, "u_depth", fix ? 1.0 : 0.0);
     st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_compose_frag, p,
                          &prog, err);
@@ -216,13 +218,17 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
       glEnable(GL_DEPTH_TEST);
       glDepthFunc(fix ? GL_EQUAL : GL_ALWAYS);
       glDepthMask(fix ? GL_FALSE : GL_TRUE);
+    } else if (fr->scene->nshapes > 0) {
+      /* Where no surface was drawn (gs_atmo_shapes.h). */
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_EQUAL);
     }
     gs__target_draw_polygon(t, FULL_SCREEN, 4);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
   }
   if (step > 1 || !l) return SH_OK;
-  p = atmo_params(g, fr, e, l, "");
+  p = atmo_params(g, fr, e, l, ls, sm, "");
   gs__param_f(p, "u_depth", 0.0);
   st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
                        &layers, err);
@@ -268,14 +274,17 @@ sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
   for (int i = 0; i < scene->nlights && st == SH_OK; i++) {
     const sh_light *l = &scene->lights[i];
     if (l->type != SH_LIGHT_DIRECTIONAL) continue;
-    st = draw_sun(g, fr, t, &e, l, first, layer, n, set->lattice_step, err);
+    const gs__light_setup *ls = set->lights ? &set->lights[i] : NULL;
+    const gs__shadow_map *sm = ls && ls->shadow != GS__SHADOW_NONE ? &set->shadows[i] : NULL;
+    if (sm) gs__shadow_bind(sm);
+    st = draw_sun(g, fr, t, &e, l, ls, sm, first, layer, n, set->lattice_step, err);
     first = 0;
     if (outside) c.spheres += n;
     else c.planes += n;
   }
   /* No sun: the background through the air alone. */
   if (st == SH_OK && first)
-    st = draw_sun(g, fr, t, &e, NULL, 1, layer, n, 1, err);
+    st = draw_sun(g, fr, t, &e, NULL, NULL, NULL, 1, layer, n, 1, err);
   glDisable(GL_BLEND);
   free(layer);
   if (counts) *counts = c;

@@ -24,6 +24,7 @@
 #include "gs_atmo.h"
 #include "gs_atmo_table.h"
 #include "gs_params.h"
+#include "gs_shadow.h"
 #include "gs_target.h"
 #include "shaders/gs_shared.h"
 
@@ -56,6 +57,12 @@ typedef struct gs__atmo_settings {
    * except where the horizon or the limb passes between lattice points,
    * drawn at full resolution; 1: every pixel at full resolution. */
   int lattice_step;
+  /* The scene's light setups and shadow maps, by light (NULL: none): a
+   * sun's map shadows the air and the ground (gs_atmo_shapes.h). With
+   * shapes, the surfaces are drawn first (gs_surface.h), the rays end on
+   * them, and lattice_step must be 1. */
+  const gs__light_setup *lights;
+  const gs__shadow_map *shadows;
 } gs__atmo_settings;
 
 /* The default lattice step for a camera (GS__ATMO_LATTICE_DEG). */

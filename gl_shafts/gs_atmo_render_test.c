@@ -152,7 +152,7 @@ int main(int argc, char **argv) {
   int spheres = argc > 5 ? atoi(argv[5]) : GS__ATMO_SPHERES;
   int lat = argc > 6 ? atoi(argv[6]) : 1;
   double bound = argc > 2 ? 1.0 : 0.003;
-  gs__atmo_settings set = {planes, spheres, lat};
+  gs__atmo_settings set = {planes, spheres, lat, NULL, NULL};
   const view_case cases[] = {
       {"sunset_towards_sun", {0, 0.001, 0}, {1, 0.2, 0}, 60, 2, 0, set, bound},
       {"dusk_away", {0, 0.001, 0}, {-1, 0.3, 0.2}, 70, -1.5, 0, set, bound},

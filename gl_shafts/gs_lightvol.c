@@ -1,5 +1,7 @@
 #include "gs_lightvol.h"
 
+#include "gs_medium.h"
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -205,13 +207,13 @@ static void shadow_cube(gs__light_setup *ls, const sh_light *l) {
 static int shadow_ortho(gs__light_setup *ls, const sh_light *l,
                         const sh_scene *scene, const gs__view *view) {
   sh_vec3 lo, hi;
-  sh_scene_bounds(scene, &lo, &hi);
+  int whole = gs__medium_shadow_bounds(scene, &lo, &hi);
   gs__poly *rp = malloc(sizeof *rp);
   if (!rp) return 0;
   gs__poly_box(rp, lo, hi);
   gs__halfspace fr[5];
   gs__view_frustum(view, fr);
-  for (int i = 0; i < 5; i++) gs__poly_clip(rp, fr[i]);
+  for (int i = 0; i < 5 && !whole; i++) gs__poly_clip(rp, fr[i]);
   for (int i = 0; i < ls->nregion; i++) gs__poly_clip(rp, ls->region[i]);
   if (rp->nfaces == 0) {
     free(rp);

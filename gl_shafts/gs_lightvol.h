@@ -10,7 +10,8 @@
  *   no caster needs no shadow map. The map's
  *   projection: a 2D perspective map for spots up to 70 degrees, a cube map
  *   for point lights and wider spots, an orthographic map for directional
- *   lights covering what the camera sees of the lit region. */
+ *   lights covering what the camera sees of the lit region (in an
+ *   atmosphere, the shapes' bounds: gs__medium_shadow_bounds). */
 #ifndef GS_LIGHTVOL_H
 #define GS_LIGHTVOL_H
 

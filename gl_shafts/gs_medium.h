@@ -7,7 +7,8 @@
  * - The kind as the shaders' MEDIUM switch (gs_shared.h), and the medium's
  *   parameters (u_sigma_s, u_sigma_t, u_bmin, u_bmax, u_g, u_fog; at the
  *   base height for height fog, positions in the anchored space of
- *   gs_view.h).
+ *   gs_view.h; an atmosphere's sphere and optical-depth table,
+ *   atmo_table.glsl).
  * - The largest extinction in a light's lit volume, which decides how
  *   densely the sweep samples optical depth (gs_sweep.c). */
 #ifndef GS_MEDIUM_H
@@ -28,6 +29,14 @@ int gs__medium_is_atmosphere(const sh_medium *m);
 
 /* The MEDIUM switch's value for m (GS_MEDIUM_HOMOGENEOUS without one). */
 int gs__medium_kind(const sh_medium *m);
+
+/* The bounds a directional light's shadow map must hold in depth, into
+ * lo and hi: the scene's (sh_scene_bounds), returning 0; for an
+ * atmosphere its shapes' alone, returning 1: the air and the ground look
+ * the map up with their depth clamped to its far end (atmo_shapes.glsl),
+ * and the map then covers the shapes' bounds whole, not only the part in
+ * view, as casters outside the view shadow the air in it. */
+int gs__medium_shadow_bounds(const sh_scene *scene, sh_vec3 *lo, sh_vec3 *hi);
 
 /* Appends the medium's parameters to p (zeros without a medium). */
 void gs__medium_params(gs__params *p, const gs__view *view, const sh_medium *m);

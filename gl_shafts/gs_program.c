@@ -8,56 +8,72 @@
 
 #include "sh_array.h"
 
-/* Adds the parts of text to parts[*n...]: text with its `#include "NAME"`
- * line (one at most, at the start of a line) replaced by the embedded file
- * NAME and the #line that follows it (written to line_after, size bytes).
- * Returns 0 with *bad at the include line if NAME is unknown, else 1. */
-static int add_with_include(const char *t, const char **parts, GLint *lens, int *n,
-                            char *line_after, size_t size, const char **bad) {
-#define ADD(s, l) (parts[*n] = (s), lens[(*n)++] = (GLint)(l))
-  const char *inc = strstr(t, "#include \"");
-  while (inc && inc != t && inc[-1] != '\n') inc = strstr(inc + 1, "#include \"");
-  if (!inc) {
-    ADD(t, -1);
-    return 1;
-  }
-  const char *name = inc + strlen("#include \""), *quote = strchr(name, '"');
-  const char *eol = strchr(inc, '\n');
-  const gs__glsl *file = NULL;
-  for (int i = 0; quote && gs__glsl_all[i] && !file; i++)
-    if (strlen(gs__glsl_all[i]->name) == (size_t)(quote - name) &&
-        !strncmp(gs__glsl_all[i]->name, name, (size_t)(quote - name)))
-      file = gs__glsl_all[i];
-  if (!file) {
-    *bad = inc;
-    return 0;
-  }
+/* Where the parts of a stage go: parts and lens with room for max, and
+ * the #line directives that follow included files, written into lines
+ * (size bytes, used so far). */
+typedef struct source_out {
+  const char **parts;
+  GLint *lens;
+  int n, max;
+  char *lines;
+  size_t size, used;
+} source_out;
+
+/* Adds the parts of text to o: text with each `#include "NAME"` line (at
+ * the start of a line) replaced by the embedded file NAME, itself expanded
+ * so (up to GS__INCLUDE_DEPTH deep), and followed by a #line that restores
+ * text's own numbering. Returns 0 with *bad at the include line if NAME is
+ * unknown, nested too deep or the parts do not fit, else 1. */
+static int add_with_include(const char *t, source_out *o, int depth, const char **bad) {
+#define ADD(s, l) (o->parts[o->n] = (s), o->lens[o->n++] = (GLint)(l))
+  const char *from = t, *inc = NULL;
   int line = 1;
-  for (const char *c = t; c < inc; c++) line += *c == '\n';
-  snprintf(line_after, size, "\n#line %d\n", line + 1);
-  ADD(t, inc - t);
-  ADD(file->text, -1);
-  ADD(line_after, -1);
-  ADD(eol ? eol + 1 : "", -1);
+  for (;;) {
+    inc = strstr(from, "#include \"");
+    while (inc && inc != t && inc[-1] != '\n') inc = strstr(inc + 1, "#include \"");
+    if (!inc) {
+      if (o->n >= o->max) break;
+      ADD(from, -1);
+      return 1;
+    }
+    const char *name = inc + strlen("#include \""), *quote = strchr(name, '"');
+    const char *eol = strchr(inc, '\n');
+    const gs__glsl *file = NULL;
+    for (int i = 0; quote && gs__glsl_all[i] && !file; i++)
+      if (strlen(gs__glsl_all[i]->name) == (size_t)(quote - name) &&
+          !strncmp(gs__glsl_all[i]->name, name, (size_t)(quote - name)))
+        file = gs__glsl_all[i];
+    for (const char *c = from; c < inc; c++) line += *c == '\n';
+    char *after = o->lines + o->used;
+    int len = snprintf(after, o->size - o->used, "\n#line %d\n", line + 1);
+    if (!file || depth >= GS__INCLUDE_DEPTH || o->n + 3 > o->max || len < 0 ||
+        (size_t)len >= o->size - o->used)
+      break;
+    o->used += (size_t)len + 1;
+    ADD(from, inc - from);
+    if (!add_with_include(file->text, o, depth + 1, bad)) return 0;
+    if (o->n + 2 > o->max) break;
+    ADD(after, -1);
+    if (!eol) return 1;
+    from = eol + 1;
+    line++;
+  }
 #undef ADD
-  return 1;
+  *bad = inc ? inc : from;
+  return 0;
 }
 
 int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
                              GLint *lens, char *line_after, size_t size, const char **bad) {
-  int n = 0;
-  parts[n] = "#version 450 core\n", lens[n++] = -1;
-  parts[n] = gs__glsl_gs_shared_h.text, lens[n++] = -1;
-  parts[n] = defines, lens[n++] = -1;
-  parts[n] = "\n#line 1\n", lens[n++] = -1;
-  /* Half of line_after for each file's #line. */
-  size_t half = size / 2;
-  if (!add_with_include(gs__glsl_common_glsl.text, parts, lens, &n, line_after, half, bad))
-    return 0;
-  parts[n] = "\n#line 1\n", lens[n++] = -1;
-  if (!add_with_include(src->text, parts, lens, &n, line_after + half, size - half, bad))
-    return 0;
-  return n;
+  source_out o = {parts, lens, 0, GS__SOURCE_PARTS_MAX, line_after, size, 0};
+  parts[o.n] = "#version 450 core\n", lens[o.n++] = -1;
+  parts[o.n] = gs__glsl_gs_shared_h.text, lens[o.n++] = -1;
+  parts[o.n] = defines, lens[o.n++] = -1;
+  parts[o.n] = "\n#line 1\n", lens[o.n++] = -1;
+  if (!add_with_include(gs__glsl_common_glsl.text, &o, 0, bad)) return 0;
+  parts[o.n] = "\n#line 1\n", lens[o.n++] = -1;
+  if (o.n >= o.max || !add_with_include(src->text, &o, 0, bad)) return 0;
+  return o.n;
 }
 
 /* Whether a shader's compile (status GL_COMPILE_STATUS) or a program's link
@@ -80,7 +96,7 @@ static sh_status compile(GLenum type, const gs__glsl *src, const char *defines,
                          GLuint *out, sh_error *err) {
   const char *parts[GS__SOURCE_PARTS_MAX], *bad = NULL;
   GLint lens[GS__SOURCE_PARTS_MAX];
-  char line_after[64];
+  char line_after[GS__LINE_AFTER_SIZE];
   int nparts = gs__program_source_parts(src, defines, parts, lens, line_after,
                                         sizeof line_after, &bad);
   if (!nparts) {

@@ -40,12 +40,16 @@ sh_status gs__program_get(gs__programs *cache, const gs__glsl *vs,
 /* The source parts a stage is compiled from, in glShaderSource's order
  * (parts and lens: room for GS__SOURCE_PARTS_MAX; lens -1 where a part is
  * NUL-terminated): the version, gs_shared.h, the defines, common.glsl and
- * the stage's file, each of the last two with its `#include "NAME"` line
- * (one at most) replaced by the embedded file NAME (line_after, size bytes,
- * at least 64, holds the #line directives that follow them). Returns the
+ * the stage's file, each with its `#include "NAME"` lines replaced by the
+ * embedded file NAME, whose own includes are expanded likewise up to
+ * GS__INCLUDE_DEPTH deep (line_after, size bytes, GS__LINE_AFTER_SIZE
+ * enough, holds the #line directives that follow them). Returns the
  * number of parts, or 0 with *bad set to the include line if NAME is
- * unknown. The program cache on disk keys on the same parts. */
-#define GS__SOURCE_PARTS_MAX 14
+ * unknown, nested too deep or the parts do not fit. The program cache on
+ * disk keys on the same parts. */
+#define GS__SOURCE_PARTS_MAX 40
+#define GS__INCLUDE_DEPTH 3
+#define GS__LINE_AFTER_SIZE 256
 int gs__program_source_parts(const gs__glsl *src, const char *defines, const char **parts,
                              GLint *lens, char *line_after, size_t size, const char **bad);
 

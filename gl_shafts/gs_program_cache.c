@@ -93,7 +93,7 @@ void gs__program_cache_driver(char *buf, size_t size) {
 static size_t gs__key_stage(char *key, const gs__glsl *src, const char *defines) {
   const char *parts[GS__SOURCE_PARTS_MAX], *bad = NULL;
   GLint lens[GS__SOURCE_PARTS_MAX];
-  char line_after[64];
+  char line_after[GS__LINE_AFTER_SIZE];
   int n = gs__program_source_parts(src, defines, parts, lens, line_after,
                                    sizeof line_after, &bad);
   if (n <= 0)

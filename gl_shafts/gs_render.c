@@ -345,17 +345,19 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   sh_status st = SH_OK;
   gs__frame fr = {scene, &r->view, &r->progs, &r->params, !o->live};
   double start = sh_seconds(), t = start;
-  /* An atmosphere is drawn by gs_atmo_render alone. */
+  /* An atmosphere's air is drawn by gs_atmo_render, not the sweep; its
+   * shapes by the surface pass, with the shadow maps of every light. */
   int nsweep = r->atmo ? 0 : r->nlights;
+  int nsetup = r->atmo && !scene->nshapes ? 0 : r->nlights;
 
   /* Lights: their volumes (when a sync changed what they follow) and
    * shadow maps (when their key changed). */
-  for (int i = 0; i < nsweep && st == SH_OK && r->lights_stale; i++) {
+  for (int i = 0; i < nsetup && st == SH_OK && r->lights_stale; i++) {
     gs__light_setup_free(&r->lights[i]);
     st = gs__light_setup_init(&r->lights[i], scene, i, &r->view, &r->geom, err);
   }
   if (st == SH_OK) r->lights_stale = 0;
-  for (int i = 0; i < nsweep && st == SH_OK; i++) {
+  for (int i = 0; i < nsetup && st == SH_OK; i++) {
     if (r->lights[i].shadow == GS__SHADOW_NONE) continue;
     int drawn = 0;
     st = gs__shadow_update(&r->shadows[i], &fr, &r->lights[i],
@@ -365,7 +367,7 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   }
   if (st == SH_OK) s.shadow_seconds = lap(&t);
 
-  if (st == SH_OK && !r->atmo)
+  if (st == SH_OK && (!r->atmo || scene->nshapes))
     st = gs__surface_render(&fr, &r->geom, r->lights, r->shadows, r->maps,
                             &r->target, err);
   if (st == SH_OK) s.surface_seconds = lap(&t);
@@ -400,7 +402,14 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
      * defaults (gs_atmo_render.h). */
     gs__atmo_settings set = {o->planes > 0 ? o->planes : GS__ATMO_PLANES,
                              o->planes > 0 ? o->planes : GS__ATMO_SPHERES,
-                             gs__atmo_lattice_step(&scene->camera)};
+                             gs__atmo_lattice_step(&scene->camera), NULL, NULL};
+    if (nsetup) {
+      /* The rays end on the surfaces (atmo_shapes.glsl). */
+      glBindTextureUnit(GS_UNIT_LINDEPTH, r->target.lindepth);
+      set.lattice_step = 1;
+      set.lights = r->lights;
+      set.shadows = r->shadows;
+    }
     gs__atmo_counts ac;
     st = gs__atmo_render(r->atmo, &fr, &r->target, &set, &ac, err);
     counts.planes += ac.planes + ac.spheres;

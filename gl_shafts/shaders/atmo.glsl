@@ -1,7 +1,8 @@
 // The atmosphere (gs_atmo.h): its coefficients by height, the phase
 // mixture, the optical-depth table (gs_atmo_table.h) and the geometry of a
-// pixel's ray about the planet, shared by atmo_base.frag, atmo_sky.frag and
-// atmo_space.frag.
+// pixel's ray about the planet, shared by atmo_layer.frag and
+// atmo_compose.frag; the optical-depth table's lookup is medium.glsl's
+// (atmo_table.glsl).
 //
 // Coordinates are the eye's: the eye is the origin, the planet's centre
 // lies at -u_re * u_up (u_up the unit vertical at the eye, u_re the eye's
@@ -34,10 +35,7 @@
 #define EYE_OUTSIDE 0
 #endif
 
-layout(binding = GS_UNIT_ATMO) uniform sampler2D u_table;
 uniform float u_lat_scale;
-
-const float ATMO_TAU_EPS = 1e-6; // GS__ATMO_TAU_EPS
 
 float rayleigh_phase(float c) { return 3.0 * (1.0 + c * c) / (16.0 * PI); }
 
@@ -69,26 +67,6 @@ float mie_phase(float c) {
 // (Rayleigh's) and pm (Mie's) of the pixel: sum of sigma_s p.
 vec3 scatter_at(float h, float pr, float pm) {
   return u_ray_s * (exp(-h / u_ray_h) * pr) + u_mie_s * (exp(-h / u_mie_h) * pm);
-}
-
-// Whether the ray from radius r (rho2 = r^2 - R_g^2) with cosine mu to the
-// vertical meets the ground (gs__atmo_hits_ground).
-bool hits_ground(float r, float rho2, float mu) {
-  return mu < 0.0 && r * r * mu * mu >= rho2;
-}
-
-// The optical depth from radius r along cosine mu to the top
-// (gs__atmo_table_lookup without the ground: the caller tests it).
-vec3 tau_top(float r, float rho2, float mu) {
-  float hh2 = u_hh * u_hh, rho = sqrt(max(rho2, 0.0));
-  float top2 = max(hh2 - rho2, 0.0); // R_t^2 - r^2
-  float s = sqrt(max(r * r * mu * mu + top2, 0.0));
-  float d = mu > 0.0 ? top2 / max(r * mu + s, 1e-30) : s - r * mu;
-  float dmin = top2 / (u_rt + r), dmax = rho + u_hh;
-  float umu = clamp((d - dmin) / max(dmax - dmin, 1e-30), 0.0, 1.0);
-  float ur = clamp(rho / u_hh, 0.0, 1.0);
-  vec2 uv = (vec2(umu, ur) * (u_table_size - 1.0) + 0.5) / u_table_size;
-  return max(exp(texture(u_table, uv).rgb) - ATMO_TAU_EPS, 0.0);
 }
 
 // The transmittance from a point at radius r (rho2) towards the sun, at the
@@ -249,26 +227,33 @@ vec3 g_tau_e, g_tau_chord;
                            : g_tau_e - tau_top(p.r, p.rho2, p.mu_p))
 #endif
 
+// The scattered radiance per unit irradiance and length at distance t
+// along the ray, the sun unblocked but for the ground.
+vec3 inscatter_at(Ray ry, float t) {
+  Pt p = point_at(ry, t);
+  return scatter_at(p.h, ry.pr, ry.pm) * sun_tr(p.r, p.rho2, p.mu_sp) *
+         exp(-max(EYE_TAU(p), vec3(0.0)));
+}
+
 // The scattered radiance per unit irradiance of the ray's lit stretch
 // [ta, tb] (3-point Gauss-Legendre).
 vec3 inscatter(Ray ry, float ta, float tb) {
   if (!(tb > ta)) return vec3(0.0);
   float half_len = 0.5 * (tb - ta), mid = 0.5 * (ta + tb);
   vec3 sum = vec3(0.0);
-  for (int i = -1; i <= 1; i++) {
-    float t = mid + float(i) * GL3_X * half_len;
-    Pt p = point_at(ry, t);
-    vec3 f = scatter_at(p.h, ry.pr, ry.pm) * sun_tr(p.r, p.rho2, p.mu_sp) *
-             exp(-max(EYE_TAU(p), vec3(0.0)));
-    sum += f * (i == 0 ? GL3_W1 : GL3_W0);
-  }
+  for (int i = -1; i <= 1; i++)
+    sum += inscatter_at(ry, mid + float(i) * GL3_X * half_len) * (i == 0 ? GL3_W1 : GL3_W0);
   return sum * half_len;
 }
 
 // inscatter over [ta, tb] without the planet's shadow sh (shadow_span).
-vec3 inscatter_lit(Ray ry, float ta, float tb, vec2 sh) {
+vec3 inscatter_open(Ray ry, float ta, float tb, vec2 sh) {
   return inscatter(ry, ta, min(tb, sh.x)) + inscatter(ry, max(ta, sh.y), tb);
 }
+
+// Shapes in the air: inscatter_lit, inscatter_open where the ray ends on
+// a surface and the shapes' shadows leave out; g_tsurf.
+#include "atmo_shapes.glsl"
 
 // What every layer of a pixel's ray shares.
 struct Setup {
@@ -299,6 +284,7 @@ Setup setup_ray(vec2 frag) {
   s.ground = tg > 0.0;
   s.tend = s.ground ? tg : top_exit_t(s.ry);
 #endif
+  g_tsurf = surface_t(frag, s.vl);
   return s;
 }
 

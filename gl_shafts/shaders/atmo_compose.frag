@@ -64,7 +64,8 @@ vec3 ray_end(Setup s) {
   vec3 tr = exp(-max(tau_eye, vec3(0.0)));
   if (tg > 0.0) {
     float mu_sg = (u_re * s.ry.mu_s + tg * s.ry.nu) / u_rg;
-    return tr * u_albedo / PI * u_esun * max(mu_sg, 0.0) * sun_tr(u_rg, 0.0, mu_sg);
+    return tr * u_albedo / PI * u_esun * max(mu_sg, 0.0) * sun_tr(u_rg, 0.0, mu_sg) *
+           sun_vis_at(s.ry, tg);
   }
   vec3 e = s.ry.d - u_lsun;
   return tr * ((FIRST == 1 ? u_background : vec3(0.0)) +

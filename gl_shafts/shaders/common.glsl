@@ -20,8 +20,9 @@
 //   TAU_SUB     1 if a slab can be optically thick: sample it by optical
 //               depth (live programs always do, with a rate of 0 when no
 //               slab is thick)
-//   MEDIUM      GS_MEDIUM_HOMOGENEOUS or GS_MEDIUM_HEIGHT_FOG (medium.glsl,
-//               included below, is all that looks at it)
+//   MEDIUM      GS_MEDIUM_HOMOGENEOUS, GS_MEDIUM_HEIGHT_FOG or
+//               GS_MEDIUM_ATMOSPHERE (medium.glsl, included below, is all
+//               that looks at it)
 // Live programs (gs_options.live) switch on the scene's structure and on
 // the value classes above that are costly to choose per fragment and
 // seldom flip (SPOT_EXPONENT, LIGHT_INSIDE, SHADOW 0 for a light without

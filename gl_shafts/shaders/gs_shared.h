@@ -23,6 +23,7 @@
 /* MEDIUM: the medium's kind (sh_medium_type; gs_medium.h, medium.glsl). */
 #define GS_MEDIUM_HOMOGENEOUS 0
 #define GS_MEDIUM_HEIGHT_FOG 1
+#define GS_MEDIUM_ATMOSPHERE 2
 
 /* SHADOW: the light's shadow map (gs_lightvol.h). */
 #define GS_SHADOW_NONE 0

@@ -17,6 +17,17 @@
 //                          / H), g(x) = (1 - exp(-x)) / x: sh_medium.c's
 //                          form, without the cancellation of a nearly
 //                          horizontal span.
+//   GS_MEDIUM_ATMOSPHERE   a planet's air (gs_atmo.h) inside the top sphere
+//                          of radius u_rt about u_atmo_c (anchored): the
+//                          optical depth of a span from the table
+//                          (atmo_table.glsl), the difference of the depths
+//                          to the top from its two ends along it (along its
+//                          reverse where it points at the ground), as
+//                          atmo.glsl's EYE_TAU; a span through the ground
+//                          is opaque. The coefficients at a point are not
+//                          given here: the sweep does not draw an
+//                          atmosphere (gs_atmo_render.h and gs_atmo_light.h
+//                          do, from atmo.glsl).
 // MEDIUM_VARIES is 1 where the coefficients vary along a ray: the plane
 // shaders then take samples at least medium_variation_rate() per unit
 // length, so that the density's change inside a slab is followed.
@@ -31,12 +42,39 @@
 // 0.26%.
 const float FOG_SAMPLES_PER_SCALE_HEIGHT = 4.0;
 
+#if MEDIUM == GS_MEDIUM_ATMOSPHERE
+#include "atmo_table.glsl"
+
+// The optical depth that stands for a span through the ground.
+const float ATMO_OPAQUE = 1e30;
+
+// The part [t0, t1] of o + t d, t in [lo, hi], inside the top sphere.
+vec2 medium_clip(vec3 o, vec3 d, float lo, float hi) {
+  vec3 q = o - u_atmo_c;
+  float a = dot(d, d), b = dot(q, d), lq = length(q);
+  float c = (lq - u_rt) * (lq + u_rt), disc = b * b - a * c;
+  if (disc < 0.0) return vec2(1.0, 0.0);
+  float s = sqrt(disc);
+  return vec2(max(lo, (-b - s) / a), min(hi, (-b + s) / a));
+}
+
+// The distance from p, inside the top sphere, to it along unit w.
+float medium_exit(vec3 p, vec3 w) { return max(medium_clip(p, w, 0.0, BIG).y, 0.0); }
+
+// The radius r, rho2 = r^2 - R_g^2 and the cosine to the vertical of unit
+// w at the point q from the planet's centre.
+vec3 atmo_point(vec3 q, vec3 w) {
+  float r = length(q);
+  return vec3(r, (r - u_rg) * (r + u_rg), dot(q, w) / r);
+}
+#else
 // The part [t0, t1] of o + t d, t in [lo, hi], inside the region (empty
 // when t0 >= t1).
 vec2 medium_clip(vec3 o, vec3 d, float lo, float hi) { return box_clip(o, d, lo, hi); }
 
 // The distance from p, inside the region, to its boundary along unit w.
 float medium_exit(vec3 p, vec3 w) { return box_exit(p, w); }
+#endif
 
 #if MEDIUM == GS_MEDIUM_HEIGHT_FOG
 // The relative density at height y. The exponent is held below 80, where
@@ -56,6 +94,21 @@ float one_minus_exp_over(float x) {
 // the region; dl is |d| (1.0 for a unit d, which the compiler folds).
 vec3 optical_depth_span(vec3 o, vec3 d, float dl, float t0, float t1) {
   float len = (t1 - t0) * dl;
+#if MEDIUM == GS_MEDIUM_ATMOSPHERE
+  vec3 w = d / dl, q0 = o + t0 * d - u_atmo_c, q1 = q0 + len * w;
+  vec3 a = atmo_point(q0, w);
+  if (hits_ground(a.x, a.y, a.z)) {
+    // The ground's nearer meeting (atmo.glsl's ground_t): the span ends
+    // short of it or is blocked; then the reverse reaches the top.
+    float disc = a.x * a.x * a.z * a.z - a.y;
+    float tg = max(a.y, 0.0) / max(-a.x * a.z + sqrt(max(disc, 0.0)), 1e-30);
+    if (tg < len) return vec3(ATMO_OPAQUE);
+    vec3 b = atmo_point(q1, -w);
+    return max(tau_top(b.x, b.y, b.z) - tau_top(a.x, a.y, -a.z), 0.0);
+  }
+  vec3 b = atmo_point(q1, w);
+  return max(tau_top(a.x, a.y, a.z) - tau_top(b.x, b.y, b.z), 0.0);
+#endif
 #if MEDIUM == GS_MEDIUM_HEIGHT_FOG
   float y0 = o.y + t0 * d.y, rise = (t1 - t0) * abs(d.y);
   float low = d.y < 0.0 ? y0 - rise : y0;
