@@ -20,6 +20,7 @@
 #include "sh_assimp.h"
 #include "sh_confine.h"
 #include "sh_file.h"
+#include "sh_gltf_check.h"
 #include "sh_off.h"
 #include "sh_ply.h"
 
@@ -186,6 +187,46 @@ static own_reader own_reader_of(const char *path, const unsigned char *head, siz
   return ai && ext[0] && ai->is_extension_supported(dotted) ? NULL : sh__off_read;
 }
 
+/* Reads the mesh `path` of `size` bytes whole, after checking that it lies
+ * inside `root` (NULL: its own directory), into *data (malloc'ed, with a
+ * NUL after its *got bytes). */
+static sh_status read_confined(const char *path, const char *root, long long size,
+                               char **data, size_t *got, sh_error *err) {
+  *data = NULL;
+  char *own_root = root ? NULL : dir_of(path);
+  if (!root && !own_root) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  int inside = sh__confined(path, root ? root : own_root, NULL);
+  if (inside == 0) {
+    sh_status st = sh_error_set(
+        err, SH_ERR_MESH,
+        "the mesh '%s' lies outside the scene's directory '%s': files a scene "
+        "uses must lie in its directory tree",
+        path, root ? root : own_root);
+    free(own_root);
+    return st;
+  }
+  free(own_root);
+  FILE *f = sh_file_open_read(path);
+  if (!f)
+    return sh_error_set(err, SH_ERR_IO, "cannot open mesh '%s': %s", path,
+                        strerror(errno));
+  *data = size >= 0 && (unsigned long long)size < SIZE_MAX ? malloc((size_t)size + 1) : NULL;
+  if (!*data) {
+    fclose(f);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory for mesh '%s'", path);
+  }
+  *got = fread(*data, 1, (size_t)size, f);
+  int bad = ferror(f);
+  fclose(f);
+  if (bad) {
+    free(*data);
+    *data = NULL;
+    return sh_error_set(err, SH_ERR_IO, "cannot read mesh '%s'", path);
+  }
+  (*data)[*got] = '\0';
+  return SH_OK;
+}
+
 /* Loads `path` with the core's own reader if it is one of their formats:
  * *handled is set then, and the status is the load's. */
 static sh_status load_own(const char *path, const char *root, long long size,
@@ -197,45 +238,14 @@ static sh_status load_own(const char *path, const char *root, long long size,
                         strerror(errno));
   unsigned char head[64];
   size_t n = fread(head, 1, sizeof head, f);
-  own_reader read = own_reader_of(path, head, n);
-  if (!read) {
-    fclose(f);
-    return SH_OK;
-  }
-  *handled = 1;
-  char *own_root = root ? NULL : dir_of(path);
-  if (!root && !own_root) {
-    fclose(f);
-    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  }
-  int inside = sh__confined(path, root ? root : own_root, NULL);
-  if (inside == 0) {
-    sh_status st = sh_error_set(
-        err, SH_ERR_MESH,
-        "the mesh '%s' lies outside the scene's directory '%s': files a scene "
-        "uses must lie in its directory tree",
-        path, root ? root : own_root);
-    free(own_root);
-    fclose(f);
-    return st;
-  }
-  free(own_root);
-  char *data = size >= 0 && (unsigned long long)size < SIZE_MAX
-                   ? malloc((size_t)size + 1)
-                   : NULL;
-  if (!data) {
-    fclose(f);
-    return sh_error_set(err, SH_ERR_NOMEM, "out of memory for mesh '%s'", path);
-  }
-  rewind(f);
-  size_t got = fread(data, 1, (size_t)size, f);
-  int bad = ferror(f);
   fclose(f);
-  if (bad) {
-    free(data);
-    return sh_error_set(err, SH_ERR_IO, "cannot read mesh '%s'", path);
-  }
-  data[got] = '\0';
+  own_reader read = own_reader_of(path, head, n);
+  if (!read) return SH_OK;
+  *handled = 1;
+  char *data;
+  size_t got;
+  sh_status st = read_confined(path, root, size, &data, &got, err);
+  if (st != SH_OK) return st;
   /* The readers parse numbers with strtod: in the C locale, whatever the
    * program's (sh_mesh_reader.h). */
   locale_t c_locale = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
@@ -244,9 +254,23 @@ static sh_status load_own(const char *path, const char *root, long long size,
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   }
   locale_t old = uselocale(c_locale);
-  sh_status st = read(path, data, got, mesh, err);
+  st = read(path, data, got, mesh, err);
   uselocale(old);
   freelocale(c_locale);
+  free(data);
+  return st;
+}
+
+/* A file assimp's glTF importers could read goes through sh_gltf_check.h
+ * first (what assimp allocates or follows unchecked). */
+static sh_status check_gltf(const char *path, const char *root, long long size,
+                            sh_error *err) {
+  if (!sh__gltf_candidate(path)) return SH_OK;
+  char *data;
+  size_t got;
+  sh_status st = read_confined(path, root, size, &data, &got, err);
+  if (st != SH_OK) return st;
+  st = sh__gltf_check(path, data, got, err);
   free(data);
   return st;
 }
@@ -279,6 +303,8 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   int handled;
   rs = load_own(path, root, size, mesh, &handled, err);
   if (handled || rs != SH_OK)
+    return rs;
+  if ((rs = check_gltf(path, root, size, err)) != SH_OK)
     return rs;
 
   const sh__assimp *ai = sh__assimp_get(path, err);
