@@ -1,7 +1,6 @@
 #include "gs_atmo.h"
 
 #include <math.h>
-#include <stdio.h>
 
 void gs__atmo_density(const gs__atmo *a, double h, double *rayleigh,
                       double *mie, double *ozone) {
@@ -47,29 +46,4 @@ void gs__atmo_from_medium(const sh_medium *m, gs__atmo *a) {
     z.ozone_width = s->ozone_width;
   }
   *a = z;
-}
-
-/* A refusal at the scene's key `path` (no line: the parser keeps none for
- * it). */
-static sh_status refuse(const sh_scene *scene, const char *path, sh_error *err,
-                        const char *what) {
-  sh_error_set(err, SH_ERR_SCENE,
-               "gl_shafts does not draw %s in an atmosphere yet; lmm_tracer "
-               "renders them (docs/gl_shafts.md, \"The atmosphere\")",
-               what);
-  if (err) {
-    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
-    snprintf(err->path, sizeof err->path, "%s", path);
-  }
-  return SH_ERR_SCENE;
-}
-
-sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err) {
-  for (int i = 0; i < scene->nlights; i++)
-    if (scene->lights[i].type != SH_LIGHT_DIRECTIONAL) {
-      char path[32];
-      snprintf(path, sizeof path, "lights[%d].type", i);
-      return refuse(scene, path, err, "point or spot lights");
-    }
-  return SH_OK;
 }

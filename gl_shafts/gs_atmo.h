@@ -30,12 +30,6 @@ typedef struct gs__atmo {
  * sh_atmosphere); an absent Mie or ozone part gets coefficients 0. */
 void gs__atmo_from_medium(const sh_medium *m, gs__atmo *a);
 
-/* What gl_shafts draws of a scene whose medium is an atmosphere: the air,
- * the ground and the sun's disk under directional lights, and shapes
- * (gs_atmo_shapes.h). SH_ERR_SCENE, located at the key, for point and
- * spot lights; SH_OK otherwise. */
-sh_status gs__atmo_check_scene(const sh_scene *scene, sh_error *err);
-
 /* The relative densities at height h: Rayleigh's exp(-h / H_R), Mie's
  * exp(-h / H_M) and the ozone's tent. */
 void gs__atmo_density(const gs__atmo *a, double h, double *rayleigh,

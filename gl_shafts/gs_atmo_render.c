@@ -130,6 +130,13 @@ static gs__params *atmo_params(const gs__atmo_gl *g, const gs__frame *fr,
   return p;
 }
 
+gs__params *gs__atmo_pass_params(const gs__atmo_gl *g, const gs__frame *fr,
+                                 const sh_light *l, const gs__light_setup *ls,
+                                 const gs__shadow_map *sm, const char *extra) {
+  eye_frame e = eye_of(&g->atmo, fr->view->frame.origin);
+  return atmo_params(g, fr, &e, l, ls, sm, extra);
+}
+
 /* The lattice's texture and framebuffer, at the size the image needs. */
 static sh_status lattice_fit(gs__atmo_gl *g, int w, int h, sh_error *err) {
   if (g->lat_tex && g->lat_w == w && g->lat_h == h) return SH_OK;

@@ -88,6 +88,13 @@ sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
                           const gs__atmo_settings *set, gs__atmo_counts *counts,
                           sh_error *err);
 
+/* Starts the parameters of a pass that includes atmo.glsl (the sky's,
+ * gs_atmo_light.h's) for light l (NULL: none) with its setup and shadow
+ * map (NULL: none); the caller adds u_depth. */
+gs__params *gs__atmo_pass_params(const gs__atmo_gl *g, const gs__frame *fr,
+                                 const sh_light *l, const gs__light_setup *ls,
+                                 const gs__shadow_map *sm, const char *extra);
+
 /* The view depths of the sky's planes: z[0] = 0 < z[1] < ... < z[n] =
  * zmax, z[1] = zmax * first and the rest in geometric progression. */
 void gs__atmo_plane_depths(double zmax, double first, int n, double *z);

@@ -13,8 +13,9 @@ int gs__medium_is_atmosphere(const sh_medium *m) {
 }
 
 sh_status gs__medium_check(const sh_scene *scene, sh_error *err) {
-  /* An atmosphere: what gs_atmo_render draws of the scene. */
-  if (gs__medium_is_atmosphere(&scene->medium)) return gs__atmo_check_scene(scene, err);
+  /* An atmosphere: gs_atmo_render, gs_atmo_light and the surface pass
+   * draw every light and shape in it. */
+  if (gs__medium_is_atmosphere(&scene->medium)) return SH_OK;
   return sh_medium_require_kinds(scene, "gl_shafts",
                                  SH_MEDIUM_KIND(SH_MEDIUM_HOMOGENEOUS) |
                                      SH_MEDIUM_KIND(SH_MEDIUM_HEIGHT_FOG),

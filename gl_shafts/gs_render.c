@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gs_atmo_light.h"
 #include "gs_atmo_render.h"
 #include "gs_context.h"
 #include "gs_geometry.h"
@@ -348,7 +349,12 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
   /* An atmosphere's air is drawn by gs_atmo_render, not the sweep; its
    * shapes by the surface pass, with the shadow maps of every light. */
   int nsweep = r->atmo ? 0 : r->nlights;
-  int nsetup = r->atmo && !scene->nshapes ? 0 : r->nlights;
+  int local = 0;
+  for (int i = 0; i < r->nlights; i++)
+    local += scene->lights[i].type != SH_LIGHT_DIRECTIONAL;
+  int nsetup = r->atmo && !scene->nshapes && !local ? 0 : r->nlights;
+  /* The atmosphere's table: its surfaces and lights read it too. */
+  if (r->atmo) glBindTextureUnit(GS_UNIT_ATMO, r->atmo->tex);
 
   /* Lights: their volumes (when a sync changed what they follow) and
    * shadow maps (when their key changed). */
@@ -413,6 +419,16 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
     gs__atmo_counts ac;
     st = gs__atmo_render(r->atmo, &fr, &r->target, &set, &ac, err);
     counts.planes += ac.planes + ac.spheres;
+    /* Point and spot lights: a pass each, as many angle steps as the sky
+     * has planes. */
+    for (int i = 0; i < r->nlights && st == SH_OK; i++) {
+      if (scene->lights[i].type == SH_LIGHT_DIRECTIONAL) continue;
+      st = gs__atmo_light_render(r->atmo, &fr, &r->target, &r->lights[i], &r->shadows[i],
+                                 r->maps[i], o->planes > 0 ? o->planes
+                                                           : GS__ATMO_LIGHT_INTERVALS,
+                                 err);
+      s.lights_swept++;
+    }
     s.plane_seconds += lap(&t);
   }
   s.planes = counts.planes;
