@@ -146,10 +146,13 @@ empty "refused exports" "$out"
 check "approximation without --strict" 0 $?
 grep -q "warning:.*Henyey-Greenstein" "$dir/err" || { echo "FAIL: no warning"; fail=1; }
 grep -q "Henyey-Greenstein" "$out/h.blender.json" || { echo "FAIL: no note in the data"; fail=1; }
-# A scene beyond what Cycles' single precision holds (about 1e-6 to 1e5
-# units in radius; docs/scene_export.md, "Precision"): lambert_floor.json
-# (exact for Blender) scaled by 1e-9 and by 1e7 is refused by --strict with
-# nothing written, and exported with a warning and a note without it.
+# A scene beyond what Cycles' single precision holds in its own units and
+# position (about 1e-6 to 1e5 units in radius; docs/scene_export.md,
+# "Precision"): lambert_floor.json (exact for Blender) scaled by 1e-9 and by
+# 1e7. The exporter scales it (se_scale.h): exact, --strict accepts it, and
+# --verbose and the data state the scale. With --scale none (its own
+# units) it is refused by --strict with nothing written, and exported with
+# a warning and a note without it.
 sc=$dir/scaled_out
 mkdir -p "$sc"
 for k in 1e-9 1e7; do
@@ -167,17 +170,32 @@ def walk(o, key=""):
     return o
 json.dump(walk(s), open(sys.argv[2], "w"))
 PY
-  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" --strict 2>"$dir/err"
-  check "--strict, a scene scaled by $k" 2 $?
-  grep -q "strict: the scene is .* units across.*single precision" "$dir/err" \
+  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" --strict -v 2>"$dir/err"
+  check "--strict, a scene scaled by $k, scaled back" 0 $?
+  grep -q "frame: lengths multiplied by" "$dir/err" || { echo "FAIL: --verbose: $(cat "$dir/err")"; fail=1; }
+  grep -q '"frame": {"scale": 1e' "$sc/s.blender.json" || { echo "FAIL: no frame in the data"; fail=1; }
+  rm -f "$sc"/*
+  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" --strict --scale none 2>"$dir/err"
+  check "--strict --scale none, a scene scaled by $k" 2 $?
+  grep -q "strict: with --scale none the scene is .* units across.*single precision" "$dir/err" \
     || { echo "FAIL: --strict scale message: $(cat "$dir/err")"; fail=1; }
   empty "the refused scaled export" "$sc"
-  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" 2>"$dir/err"
-  check "a scene scaled by $k without --strict" 0 $?
-  grep -q "warning: the scene is .* units across" "$dir/err" || { echo "FAIL: no scale warning"; fail=1; }
+  "$tool" "$dir/scaled.json" --to blender -o "$sc/s.py" --scale none 2>"$dir/err"
+  check "a scene scaled by $k with --scale none, without --strict" 0 $?
+  grep -q "warning: with --scale none the scene is .* units across" "$dir/err" || { echo "FAIL: no scale warning"; fail=1; }
   grep -q "single precision" "$sc/s.blender.json" || { echo "FAIL: no scale note in the data"; fail=1; }
   rm -f "$sc"/*
 done
+# --scale: a number forces it (the .pov states it), bad values are refused.
+"$tool" "$data/lambert_floor.json" --to pov -o "$sc/f.pov" --scale 1e3; check "--scale 1e3" 0 $?
+grep -q "lengths multiplied by 1000$" "$sc/f.pov" || { echo "FAIL: --scale 1e3 not in the .pov"; fail=1; }
+rm -f "$sc"/*
+for v in 0 -1 abc inf 1e3x; do
+  "$tool" "$data/lambert_floor.json" --to pov -o "$sc/f.pov" --scale "$v" 2>"$dir/err"
+  check "--scale $v" 2 $?
+  grep -q "scale: expected auto, none or a positive number" "$dir/err" || { echo "FAIL: --scale $v: $(cat "$dir/err")"; fail=1; }
+done
+empty "refused --scale" "$sc"
 # A spot narrower than Blender's 1-degree spot_size (issue 11, a laser): a
 # note, and --strict refuses; POV-Ray's spotlight holds any cone.
 sed 's/"outer_angle_deg": 30, "inner_angle_deg": 20/"outer_angle_deg": 0.3/' \

@@ -2,20 +2,22 @@
  * normalised scene file. The work is in the library (the targets' table,
  * se_run.h); this is the command line around it: --to's choices, its help
  * and the dispatch all come from that table. */
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "se_run.h"
+#include "se_scale.h"
 #include "sh_cli.h"
 #include "sh_parse.h"
 
 static const char *const TOOL = "scene_export";
 
 typedef struct args {
-  const char *output;
-  int to, quality, strict, parents;
+  const char *output, *scale;
+  int to, quality, strict, parents, verbose;
 } args;
 
 enum { MAX_TARGETS = 16 };
@@ -39,7 +41,34 @@ static sh_cli_option options[] = {
      NULL, NULL,
      "refuse (exit 2, nothing written) if the target cannot represent the "
      "scene exactly"},
+    {"scale", 0, SH_CLI_TEXT, "S", 0, FIELD(scale), 0, 0, 0, 0, NULL, NULL,
+     NULL, "auto",
+     "the POV-Ray and Blender exports' length scale: auto (chosen from the "
+     "scene's size, with its content or camera moved to the origin when far "
+     "from it: the same image, docs/scene_export.md \"Precision\"), a "
+     "positive number of target units per scene unit (the origin still "
+     "chosen), or none (the scene's own units and position)"},
+    {"verbose", 'v', SH_CLI_FLAG, NULL, 0, FIELD(verbose), 0, 0, 0, 1, NULL,
+     NULL, NULL, NULL, "print the scale and origin the export chose"},
 };
+
+/* --scale's value into opt: 1, or prints the problem and returns 0. */
+static int parse_scale(const char *text, se_options *opt) {
+  if (!text || !strcmp(text, "auto")) return 1;
+  if (!strcmp(text, "none")) {
+    opt->scale_mode = SE_SCALE_NONE;
+    return 1;
+  }
+  char *end;
+  double v = strtod(text, &end);
+  if (end == text || *end || !isfinite(v) || !(v > 0)) {
+    sh_cli_error(TOOL, "--scale: expected auto, none or a positive number, not '%s'", text);
+    return 0;
+  }
+  opt->scale_mode = SE_SCALE_FIXED;
+  opt->scale = v;
+  return 1;
+}
 
 /* --to's choices and the targets' help, from the targets' table. */
 static sh_cli_choice targets[MAX_TARGETS + 1];
@@ -72,7 +101,7 @@ int main(int argc, char **argv) {
       "the same\nimage in linear radiance (docs/scene_export.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, help_targets, NULL,
       NULL, NULL, NULL, NULL};
-  args a = {NULL, -1, SE_QUALITY_DRAFT, 0, 0};
+  args a = {NULL, NULL, -1, SE_QUALITY_DRAFT, 0, 0, 0};
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
@@ -85,13 +114,21 @@ int main(int argc, char **argv) {
   if (!sh_cli_check_output(TOOL, "-o", a.output, target->extension, a.parents))
     return SH_EXIT_BAD_INPUT;
 
+  se_options opt = {(se_quality)a.quality, SE_SCALE_AUTO, 0.0};
+  if (!parse_scale(a.scale, &opt)) return SH_EXIT_BAD_INPUT;
+
   sh_scene *scene = NULL;
   if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], 0, &scene))) return rc;
   sh_error err;
-  se_options opt = {(se_quality)a.quality};
   se_notes notes = {0};
-  sh_status st =
-      se_export_scene(scene, target, &opt, a.output, a.strict, &notes, &err);
+  se_frame frame;
+  sh_status st = se_export_scene(scene, target, &opt, a.output, a.strict, &notes,
+                                 &frame, &err);
+  if (a.verbose && frame.scale > 0) {
+    char *text = se_scale_describe(&frame);
+    fprintf(stderr, "%s: frame: %s\n", TOOL, text ? text : "out of memory");
+    free(text);
+  }
   if (st == SH_OK) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);

@@ -10,6 +10,7 @@
 #include "se_jsontext.h"
 #include "se_cycles_phase.h"
 #include "se_frame.h"
+#include "se_scale.h"
 #include "se_text.h"
 #include "sh_camera.h"
 #include "sh_tessellate.h"
@@ -26,28 +27,27 @@ typedef struct blend {
   int dir_len;
   se_output *out;
   se_notes eevee; /* what EEVEE alone approximates: the data's eevee_notes */
+  se_frame frame; /* scene space (Y up) to Blender's (Z up): se_frame.h, se_scale.h */
 } blend;
 
-/* Scene space (Y up) to Blender's (Z up), metres = scene units
- * (se_frame.h). */
-static sh_vec3 to_blender(sh_vec3 v) {
-  const se_frame f = se_frame_blender();
-  return se_frame_point(&f, v);
-}
+/* A scene point in Blender's space. */
+static sh_vec3 to_blender(const blend *b, sh_vec3 p) { return se_frame_point(&b->frame, p); }
 
 static json_t *vec(sh_vec3 v) { return json_pack("[fff]", v.x, v.y, v.z); }
 /* Appends the three coordinates of scene point p, in Blender's space. */
-static void push_point(json_t *a, sh_vec3 p) {
-  sh_vec3 v = to_blender(p);
+static void push_point(const blend *b, json_t *a, sh_vec3 p) {
+  sh_vec3 v = to_blender(b, p);
   json_array_append_new(a, json_real(v.x));
   json_array_append_new(a, json_real(v.y));
   json_array_append_new(a, json_real(v.z));
 }
 
-/* A 4x4 matrix, row-major, from its columns (in scene space) and a
- * translation. */
-static json_t *frame(sh_vec3 x, sh_vec3 y, sh_vec3 z, sh_vec3 t) {
-  sh_vec3 c[4] = {to_blender(x), to_blender(y), to_blender(z), to_blender(t)};
+/* A 4x4 matrix, row-major, from its columns (directions in scene space,
+ * unscaled: objects keep unit size) and a translation (a scene point). */
+static json_t *frame(const blend *b, sh_vec3 x, sh_vec3 y, sh_vec3 z, sh_vec3 t) {
+  const se_frame *f = &b->frame;
+  sh_vec3 c[4] = {se_frame_dir(f, x), se_frame_dir(f, y), se_frame_dir(f, z),
+                  se_frame_point(f, t)};
   json_t *m = json_array();
   for (int r = 0; r < 3; r++)
     for (int k = 0; k < 4; k++) json_array_append_new(m, json_real(sh_vget(c[k], r)));
@@ -73,28 +73,8 @@ static void clipping(const blend *b, const sh_camera_frame *f, double *start,
                      double *end) {
   double r = b->radius;
   double depth = sh_dot(sh_sub(b->center, f->origin), f->forward);
-  *start = fmax(1e-4 * r, depth - 1.1 * r);
-  *end = fmax(100.0 * r, depth + 1.1 * r);
-}
-
-/* Blender keeps the scene's units and position (one unit, one metre), and
- * Cycles computes in single precision: measured by validation/precision.py
- * (docs/scene_export.md, "Precision"), Cycles holds the hard cases' base
- * scene (3.5 units in radius) scaled by 1e-6 to 1e3 (< 0.01% from the
- * plain image), 1e3 from the origin (0.04%) and the camera 5e4 away
- * (0.6%); it fails beyond (black at 1e-9, 120% at 1e6, 17% 1e6 from the
- * origin, 3.8% with the camera 5e5 away). Outside about those limits the
- * export says so. */
-static void precision_note(blend *b, const sh_camera_frame *f) {
-  double r = b->radius, far = sh_length(b->center);
-  double cam = sh_length(sh_sub(f->origin, b->center));
-  if (r < 1e-6 || r > 1e5 || far > 1e5 * r || cam > 3e4 * r)
-    se_note(b->notes,
-            "the scene is %g units across, %g from the origin and %g from the "
-            "camera: Cycles and EEVEE compute in single precision and hold "
-            "about 1e-6 to 1e5 units in radius, 1e5 radii from the origin and "
-            "3e4 radii from the camera; expect a wrong image.",
-            2.0 * r, far, cam);
+  *start = se_frame_length(&b->frame, fmax(1e-4 * r, depth - 1.1 * r));
+  *end = se_frame_length(&b->frame, fmax(100.0 * r, depth + 1.1 * r));
 }
 
 static json_t *camera(blend *b) {
@@ -103,7 +83,7 @@ static json_t *camera(blend *b) {
   double start, end;
   clipping(b, &f, &start, &end);
   return json_pack("{s:o, s:f, s:f, s:f}", "matrix",
-                   frame(f.right, f.up, sh_neg(f.forward), f.origin), "fov_y",
+                   frame(b, f.right, f.up, sh_neg(f.forward), f.origin), "fov_y",
                    b->scene->camera.fov_y_deg * SH_PI / 180.0, "clip_start", start,
                    "clip_end", end);
 }
@@ -171,7 +151,7 @@ static void add_card(blend *b, const sh_light *l, int image, const char *engine,
                     se_card_point(&c, 0, 0),       se_card_point(&c, 1, 0),
                     se_card_point(&c, 1, 1),       se_card_point(&c, 0, 1)};
     json_t *v = json_array(), *tri = json_array();
-    for (int k = 0; k < 8; k++) push_point(v, p[k]);
+    for (int k = 0; k < 8; k++) push_point(b, v, p[k]);
     static const int idx[24] = {0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5,
                                 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
     for (int k = 0; k < 24; k++) json_array_append_new(tri, json_integer(idx[k]));
@@ -181,7 +161,7 @@ static void add_card(blend *b, const sh_light *l, int image, const char *engine,
   sh_vec3 p[4] = {se_card_point(&c, 0, 0), se_card_point(&c, 1, 0),
                   se_card_point(&c, 1, 1), se_card_point(&c, 0, 1)};
   json_t *v = json_array();
-  for (int k = 0; k < 4; k++) push_point(v, p[k]);
+  for (int k = 0; k < 4; k++) push_point(b, v, p[k]);
   json_t *card = json_pack("{s:s, s:i, s:o, s:[iiiiii], s:[ffffffff]}", "label",
                            "light map", "image", image, "vertices", v, "triangles", 0, 1, 2,
                            0, 2, 3, "uvs", 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0);
@@ -199,15 +179,15 @@ static void add_card(blend *b, const sh_light *l, int image, const char *engine,
  * sun (Blender's frame), the chord |d - s| at the disk's edge, 2 sin(half
  * angle / 2), which the shader tests in single precision without the loss
  * of 1 - cos, and the radiance irradiance / Omega. */
-static json_t *sun_disks(const sh_scene *s) {
-  const se_frame f = se_frame_blender();
+static json_t *sun_disks(const blend *b) {
+  const sh_scene *s = b->scene;
   json_t *a = json_array();
   for (int i = 0; a && i < s->nlights; i++) {
     const sh_light *l = &s->lights[i];
     if (l->type != SH_LIGHT_DIRECTIONAL || !(l->disk_solid_angle > 0)) continue;
     json_array_append_new(
         a, json_pack("{s:o, s:f, s:o}", "direction",
-                     vec(se_frame_dir(&f, sh_neg(l->direction))), "chord",
+                     vec(se_frame_dir(&b->frame, sh_neg(l->direction))), "chord",
                      sqrt(l->disk_solid_angle / SH_PI), "radiance",
                      vec(sh_scale(l->irradiance, 1.0 / l->disk_solid_angle))));
   }
@@ -227,16 +207,16 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
      * drawn by the world instead (sun_disks). */
     sh_basis(l->direction, &t, &bt);
     o = json_pack("{s:s, s:o, s:o, s:f}", "type", "SUN", "matrix",
-                  frame(t, bt, sh_neg(l->direction), sh_madd(b->center, l->direction,
-                                                              -2.0 * b->radius)),
+                  frame(b, t, bt, sh_neg(l->direction),
+                        sh_madd(b->center, l->direction, -2.0 * b->radius)),
                   "color", vec(unit), "energy", e);
   } else {
     /* Blender: a point light of P watts has intensity P / (4 pi) W/sr; a spot
-     * light the same on its axis. */
-    double e = 4.0 * SH_PI * split_colour(l->intensity, &unit);
+     * light the same on its axis. The intensity in the frame's units. */
+    double e = 4.0 * SH_PI * split_colour(se_frame_intensity(&b->frame, l->intensity), &unit);
     if (l->type == SH_LIGHT_POINT) {
       o = json_pack("{s:s, s:o, s:o, s:f}", "type", "POINT", "matrix",
-                    frame(sh_v3(1, 0, 0), sh_v3(0, 1, 0), sh_v3(0, 0, 1), l->position),
+                    frame(b, sh_v3(1, 0, 0), sh_v3(0, 1, 0), sh_v3(0, 0, 1), l->position),
                     "color", vec(unit), "energy", e);
     } else {
       double outer = l->outer_deg;
@@ -289,7 +269,7 @@ static json_t *light(blend *b, int i, json_t *images, json_t *cards) {
                 i, l->exponent, l->exponent, pow(co, l->exponent));
       sh_basis(l->direction, &t, &bt);
       o = json_pack("{s:s, s:o, s:o, s:f, s:f, s:f}", "type", "SPOT", "matrix",
-                    frame(t, bt, sh_neg(l->direction), l->position), "color", vec(unit),
+                    frame(b, t, bt, sh_neg(l->direction), l->position), "color", vec(unit),
                     "energy", e, "spot_size", 2.0 * outer * SH_PI / 180.0, "spot_blend",
                     blend);
       if (o && e_eevee != e) json_object_set_new(o, "eevee_energy", json_real(e_eevee));
@@ -382,13 +362,18 @@ static sh_status shape(blend *b, int i, json_t *meshes, sh_error *err) {
   int curved = s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER;
   double size = s->radius; /* sphere and cylinder; unused for the others */
   double rel = b->opt->quality == SE_QUALITY_FINAL ? 2e-4 : 1e-3;
+  /* The float positions about the frame's origin in object space, where
+   * they keep their precision however far the shape lies from the scene's
+   * origin (an export left in place keeps the plain tessellation). */
+  const sh_vec3 fo = b->frame.origin;
+  sh_vec3 oo = fo.x == 0 && fo.y == 0 && fo.z == 0 ? fo : sh_xform_point(&s->inv, fo);
   sh_mesh m = {0};
-  sh_status st = sh_mesh_tessellate(s, curved ? rel * size : 1.0, &m, err);
+  sh_status st = sh_mesh_tessellate_about(s, curved ? rel * size : 1.0, oo, &m, err);
   if (st != SH_OK) return st;
   json_t *v = json_array(), *t = json_array();
   for (int k = 0; k < m.nverts; k++) {
     const float *q = m.positions + 3 * k;
-    push_point(v, sh_xform_point(&s->xform, sh_v3(q[0], q[1], q[2])));
+    push_point(b, v, sh_xform_point(&s->xform, sh_add(oo, sh_v3(q[0], q[1], q[2]))));
   }
   /* A mirroring transform turns the triangles inside out: swap two corners
    * to keep them counter-clockwise seen from outside. */
@@ -415,7 +400,8 @@ static sh_status shape(blend *b, int i, json_t *meshes, sh_error *err) {
   return SH_OK;
 }
 
-/* The data's "height_fog" object: Blender's Z is the scene's Y, and the
+/* The data's "height_fog" object (scale_height in the frame's units):
+ * Blender's Z is the scene's Y, and the
  * coefficients written are those at the box's bottom z_lo (its densest
  * point), so the density factor exp((z_lo - z) / H) stays in [0, 1] in
  * single precision however far the box lies from base_height. Cycles
@@ -423,29 +409,30 @@ static sh_status shape(blend *b, int i, json_t *meshes, sh_error *err) {
  * times the material's step rate (Cycles 3.4, Object::compute_volume_step_size):
  * the rate makes the step H / 16 (the density changes by 6% over a step),
  * and volume_max_steps lets a ray cross the box's diagonal in such steps. */
-static json_t *height_fog(const sh_medium *m, sh_vec3 blo, sh_vec3 bhi) {
+static json_t *height_fog(double scale_height, sh_vec3 blo, sh_vec3 bhi) {
   sh_vec3 size = sh_sub(bhi, blo);
   double mean = (size.x + size.y + size.z) / 3.0;
-  double step = m->scale_height / 16.0;
+  double step = scale_height / 16.0;
   double rate = fmin(1.0, step / (0.1 * mean));
   double steps = ceil(1.5 * sh_length(size) / (0.1 * mean * rate));
   return json_pack("{s:f, s:f, s:f, s:i}", "bottom", blo.z, "scale_height",
-                   m->scale_height, "step_rate", rate, "max_steps",
+                   scale_height, "step_rate", rate, "max_steps",
                    (int)fmin(65536.0, fmax(1024.0, steps)));
 }
 
 static json_t *medium(blend *b) {
   const sh_medium *m = &b->scene->medium;
   double eps = 1e-4 * b->radius;
-  sh_vec3 lo = to_blender(sh_sub(m->bmin, sh_v3s(eps)));
-  sh_vec3 hi = to_blender(sh_add(m->bmax, sh_v3s(eps)));
+  sh_vec3 lo = to_blender(b, sh_sub(m->bmin, sh_v3s(eps)));
+  sh_vec3 hi = to_blender(b, sh_add(m->bmax, sh_v3s(eps)));
   sh_vec3 blo = sh_vmin(lo, hi), bhi = sh_vmax(lo, hi);
-  /* The coefficients at the box's bottom for height fog (above), else
-   * everywhere. */
+  /* The coefficients at the box's bottom (scene height bmin.y - eps) for
+   * height fog (above), else everywhere; per unit length of the frame. */
   double peak = m->type == SH_MEDIUM_HEIGHT_FOG
-                    ? exp(-(blo.z - m->base_height) / m->scale_height)
+                    ? exp(-(m->bmin.y - eps - m->base_height) / m->scale_height)
                     : 1.0;
-  const sh_vec3 sigma_s = sh_scale(m->sigma_s, peak), sigma_a = sh_scale(m->sigma_a, peak);
+  const sh_vec3 sigma_s = se_frame_per_length(&b->frame, sh_scale(m->sigma_s, peak));
+  const sh_vec3 sigma_a = se_frame_per_length(&b->frame, sh_scale(m->sigma_a, peak));
   int exact;
   double gs[SE_HG_MAX_LOBES];
   int n = se_phase_to_hg_lobes(&m->phase, gs, &exact);
@@ -495,7 +482,8 @@ static json_t *medium(blend *b) {
                         c[2], "density", dt, "absorption_color", ac[0], ac[1], ac[2],
                         "anisotropy", g1);
   if (o && m->type == SH_MEDIUM_HEIGHT_FOG)
-    json_object_set_new(o, "height_fog", height_fog(m, blo, bhi));
+    json_object_set_new(o, "height_fog",
+                        height_fog(se_frame_length(&b->frame, m->scale_height), blo, bhi));
   if (o && n > 1) {
     /* Cycles' mixture: n Volume Scatter lobes of density sigma_s / n^2 (it
      * sums their phases unweighted, se_cycles_phase.h) and the scattering
@@ -539,11 +527,20 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   name[name_len] = '\0';
   se_plain_name(name, name, name_len + 1);
   blend b = {scene, opt, notes, {0, 0, 0}, 0, name, py_path,
-             (int)(base - py_path), out, {0}};
+             (int)(base - py_path), out, {0}, se_scale_blender(scene, opt, notes)};
   se_content_sphere(scene, &b.center, &b.radius);
-  sh_camera_frame cf;
-  sh_camera_frame_init(&scene->camera, &cf);
-  precision_note(&b, &cf);
+  out->has_frame = 1;
+  out->frame = b.frame;
+  char *frame_text = se_scale_describe(&b.frame);
+  char *comment = frame_text ? se_printf_alloc(
+      "Data for the fixed script next to this file (scene_export --to blender). "
+      "Blender coordinates (Z up), metres, radians, watts; from the scene: %s "
+      "(docs/scene_export.md, \"Precision\").", frame_text) : NULL;
+  free(frame_text);
+  if (!comment) {
+    free(name);
+    return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  }
 
   json_t *images = json_array(), *cards = json_array(), *lights = json_array();
   json_t *materials = json_array(), *meshes = json_array();
@@ -558,11 +555,10 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++) st = shape(&b, i, meshes, err);
   int samples = opt->quality == SE_QUALITY_FINAL ? 1024 : 64;
   json_t *root = json_pack(
-      "{s:s, s:i, s:s, s:{s:i, s:i, s:i, s:i, s:i, s:I}, s:{s:o}, s:o, s:o, s:o, "
-      "s:o, s:o, s:o}",
-      "format", "shafts-blender", "version", 1, "comment",
-      "Data for the fixed script next to this file (scene_export --to blender). "
-      "Blender coordinates (Z up), metres, radians, watts.",
+      "{s:s, s:i, s:s, s:{s:f, s:[fff]}, s:{s:i, s:i, s:i, s:i, s:i, s:I}, s:{s:o}, "
+      "s:o, s:o, s:o, s:o, s:o, s:o}",
+      "format", "shafts-blender", "version", 1, "comment", comment, "frame", "scale",
+      b.frame.scale, "origin", b.frame.origin.x, b.frame.origin.y, b.frame.origin.z,
       "render", "width", scene->camera.width, "height", scene->camera.height,
       "max_depth", scene->render.max_depth, "samples_cycles", samples, "samples_eevee",
       opt->quality == SE_QUALITY_FINAL ? 64 : 16, "seed", (json_int_t)scene->render.seed,
@@ -570,7 +566,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       lights, "materials", materials, "meshes", meshes, "images", images, "cards",
       cards);
   if (root && scene->medium.present) json_object_set_new(root, "medium", medium(&b));
-  if (root) json_object_set_new(json_object_get(root, "world"), "sun_disks", sun_disks(scene));
+  if (root) json_object_set_new(json_object_get(root, "world"), "sun_disks", sun_disks(&b));
   if (root) {
     /* The notes as sentences (a JSON string is data, so the punctuation
      * stays; the add-on's import shows them as its warnings); a note that
@@ -621,6 +617,7 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   }
   json_decref(root);
   se_notes_free(&b.eevee);
+  free(comment);
   free(name);
   return st;
 }

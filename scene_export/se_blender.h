@@ -17,9 +17,12 @@
  * What the JSON holds, already converted by the exporter (so the script
  * stays a thin, fixed loader):
  * - Coordinates: Blender is right-handed with Z up; a scene point (x, y, z)
- *   is (x, -z, y), a rotation, so nothing is mirrored.
+ *   is (x, -z, y), a rotation, so nothing is mirrored, after the frame's
+ *   move and scale (se_scale.h: none for a scene of ordinary size near its
+ *   origin), which the JSON's "frame" states.
  * - Camera: its world matrix, the vertical field of view, the image size.
- * - Lights: point and spot lights with power P = 4 pi I watts (Blender's
+ * - Lights: point and spot lights with power P = 4 pi I watts (I in the
+ *   frame's units, times its scale squared; Blender's
  *   convention: a point light of P watts has intensity P / (4 pi) W/sr,
  *   and a spot light the same on its axis); spot_size = 2 outer and
  *   spot_blend = (cos inner - cos outer) / (1 - cos outer), which is the

@@ -11,6 +11,7 @@
 #define SE_EXPORT_H
 
 #include "se_buf.h"
+#include "se_frame.h"
 #include "sh_error.h"
 #include "sh_image.h"
 #include "sh_scene.h"
@@ -24,8 +25,18 @@ typedef enum se_quality {
   SE_QUALITY_FINAL  /* the settings for a converged comparison */
 } se_quality;
 
+/* How an export's length scale and origin are chosen (scene_export
+ * --scale; the rules: se_scale.h). */
+typedef enum se_scale_mode {
+  SE_SCALE_AUTO,  /* from what the image needs */
+  SE_SCALE_FIXED, /* se_options.scale; the origin chosen as for AUTO */
+  SE_SCALE_NONE   /* the scene's own units and position */
+} se_scale_mode;
+
 typedef struct se_options {
   se_quality quality;
+  se_scale_mode scale_mode; /* 0: SE_SCALE_AUTO */
+  double scale;             /* SE_SCALE_FIXED: target units per scene unit */
 } se_options;
 
 /* Approximations made by an export: one full sentence each, naming the
@@ -55,6 +66,8 @@ typedef struct se_file {
 typedef struct se_output {
   int count, cap;
   se_file *files; /* written in this order; put the main file last */
+  int has_frame;  /* the target chose a frame (POV-Ray, Blender) ... */
+  se_frame frame; /* ... this one: its scale and origin (se_scale.h) */
 } se_output;
 
 /* Adds a text file and returns its buffer to fill (NULL if out of memory).

@@ -5,8 +5,8 @@ se_frame se_frame_pov(double scale, sh_vec3 origin) {
   return f;
 }
 
-se_frame se_frame_blender(void) {
-  se_frame f = {{0, 2, 1}, {1, -1, 1}, 1.0, {0, 0, 0}};
+se_frame se_frame_blender(double scale, sh_vec3 origin) {
+  se_frame f = {{0, 2, 1}, {1, -1, 1}, scale, origin};
   return f;
 }
 
@@ -26,6 +26,10 @@ double se_frame_length(const se_frame *f, double length) {
 
 sh_vec3 se_frame_per_length(const se_frame *f, sh_vec3 coefficient) {
   return sh_scale(coefficient, 1.0 / f->scale);
+}
+
+sh_vec3 se_frame_intensity(const se_frame *f, sh_vec3 intensity) {
+  return sh_scale(intensity, f->scale * f->scale);
 }
 
 double se_frame_matrix(const se_frame *f, const sh_mat4 *m, int row, int col) {

@@ -8,6 +8,7 @@
 #include "se_geom.h"
 #include "se_frame.h"
 #include "se_pov_terms.h"
+#include "se_scale.h"
 #include "se_text.h"
 #include "sh_medium.h"
 #include "sh_tessellate.h"
@@ -95,7 +96,7 @@ static void header(pov *p, const char *name) {
                 name, name);
   se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel centre.\n");
   se_buf_puts(b, "// Coordinates: the scene's, moved so that ");
-  components(b, p->center);
+  components(b, p->frame.origin);
   se_buf_puts(b, " is at the origin,\n// with z negated (POV-Ray is left-handed) and ");
   se_buf_printf(b, "lengths multiplied by %g\n// (coefficients per unit length divided by it, "
                    "intensities multiplied by its\n// square), so POV-Ray's fixed tolerances of "
@@ -709,37 +710,12 @@ static void ini(se_buf *b, const char *name, const sh_scene *s) {
   se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
 }
 
-/* POV-Ray's frame, from what the image needs: the scene's content (lights,
- * medium, shapes; not the camera, which may be far away) centred at the
- * origin and scaled by a power of ten to about 300 units, against
- * POV-Ray's absolute tolerances (1e-3 units for intersections, and the
- * light's fade distance and the sphere around a light in the medium, which
- * follow the radius). A camera 5000 units from a scene 3.5 across put the
- * scene in 0.4 units: 71% off, the sphere around the light covering it
- * all. Rays must also stay well inside POV-Ray's largest distance (1e7):
- * the camera is kept within 1e6 units, which lowers the scale when the
- * camera is more than about 3000 radii away; then the tolerances are no
- * longer negligible, and a note says so. */
+/* POV-Ray's frame (se_scale.h), and the content sphere the tolerances
+ * follow. */
 static void choose_frame(pov *p) {
-  const sh_scene *s = p->scene;
-  se_content_sphere(s, &p->center, &p->radius);
-  double reach = sh_length(sh_sub(s->camera.position, p->center));
-  double scale = pow(10.0, round(log10(300.0 / p->radius)));
-  /* An atmosphere: the air's thickness about 100 units (kilometres for
-   * the Earth in km or m), so that an eye a metre above the ground stays
-   * above POV-Ray's tolerances of 1e-3 units. */
-  if (s->medium.present && s->medium.type == SH_MEDIUM_ATMOSPHERE)
-    scale = pow(10.0, round(log10(100.0 / (s->medium.atmo.top_radius -
-                                           s->medium.atmo.ground_radius))));
-  if (reach * scale > 1e6) scale = pow(10.0, floor(log10(1e6 / reach)));
-  if (p->radius * scale < 3.0)
-    se_note(p->notes,
-            "the camera is %g scene radii away: to keep it within POV-Ray's "
-            "reach the scene is %g units across, where POV-Ray's tolerances of "
-            "1e-3 units are no longer negligible.",
-            reach / p->radius, 2.0 * p->radius * scale);
-  p->scale = scale;
-  p->frame = se_frame_pov(scale, p->center);
+  se_content_sphere(p->scene, &p->center, &p->radius);
+  p->frame = se_scale_pov(p->scene, p->opt, p->notes);
+  p->scale = p->frame.scale;
 }
 
 static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
@@ -781,6 +757,8 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   p.name = name;
   choose_frame(&p);
   p.pov_radius = se_frame_length(&p.frame, p.radius);
+  out->has_frame = 1;
+  out->frame = p.frame;
 
   /* The body first, so that the header can list every approximation. */
   se_buf body = {0};

@@ -38,7 +38,9 @@ const se_target *se_target_find(const char *name) {
 
 sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                           const se_options *opt, const char *out_path,
-                          int strict, se_notes *notes, sh_error *err) {
+                          int strict, se_notes *notes, se_frame *frame,
+                          sh_error *err) {
+  if (frame) memset(frame, 0, sizeof *frame);
   if (!scene || !target || !opt || !out_path || !notes)
     return sh_error_set(err, SH_ERR_ARG, "se_export_scene: a NULL argument");
   se_output out = {0};
@@ -59,6 +61,7 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                       "nothing written",
                       notes->count, notes->count == 1 ? "" : "s");
   if (st == SH_OK) st = se_output_write(&out, scene, err);
+  if (frame && out.has_frame) *frame = out.frame;
   se_output_free(&out);
   return st;
 }
@@ -77,12 +80,12 @@ sh_status se_export_file(const char *scene_path, const char *target, int quality
     return sh_error_set(err, SH_ERR_ARG, "unknown export target '%s' (%s)",
                         target, list);
   }
-  se_options opt = {quality ? SE_QUALITY_FINAL : SE_QUALITY_DRAFT};
+  se_options opt = {quality ? SE_QUALITY_FINAL : SE_QUALITY_DRAFT, SE_SCALE_AUTO, 0.0};
   sh_scene *scene = NULL;
   sh_status st = sh_scene_load(scene_path, &scene, err);
   if (st != SH_OK) return st;
   se_notes notes = {0};
-  st = se_export_scene(scene, t, &opt, out_path, 0, &notes, err);
+  st = se_export_scene(scene, t, &opt, out_path, 0, &notes, NULL, err);
   se_notes_free(&notes);
   sh_scene_free(scene);
   return st;

@@ -40,10 +40,12 @@ const se_target *se_target_find(const char *name);
  * files. If `strict` is set and the export needs approximations, nothing
  * is written and SH_ERR_SCENE is returned, with a message counting them.
  * The approximations are left in `notes` (owned by the caller) either
- * way. */
+ * way. If `frame` is not NULL it receives the frame the target chose
+ * (se_scale.h; scale 0 for a target without one, the json target). */
 sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                           const se_options *opt, const char *out_path,
-                          int strict, se_notes *notes, sh_error *err);
+                          int strict, se_notes *notes, se_frame *frame,
+                          sh_error *err);
 
 /* Loads the scene file at scene_path (sh_scene_load) and exports it without
  * --strict, discarding the notes (the Blender data file keeps them).

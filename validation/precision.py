@@ -22,7 +22,9 @@ in fog over a floor, a black ball shadowing the shaft; the case of
 Relative RMS over the lit region (shafts_compare, lit 0.01); 'fail' where a
 renderer exits with an error. Renderers (--renderers): lmm_tracer's
 reference and lmm modes, gl_shafts, POV-Ray and Blender's Cycles (256
-samples, minutes) through scene_export, where installed.
+samples, minutes) through scene_export, where installed; cycles_unscaled is
+Cycles with the export's --scale none (the scene's own units and position,
+as every Blender export was before the exporter chose a frame).
 """
 
 import argparse
@@ -58,17 +60,22 @@ def renderers(build, work):
                         "-o", str(pov_file)], check=True, capture_output=True)
         subprocess.run(["povray", pov_file.with_suffix(".ini").name], cwd=str(out.parent),
                        check=True, capture_output=True)
-    def cycles(scene, out):
-        py = out.with_suffix(".py")
-        subprocess.run([str(build / "scene_export" / "scene_export"), str(scene), "--to",
-                        "blender", "-o", str(py)], check=True, capture_output=True)
-        subprocess.run(["blender", "-b", "-P", str(py), "--", "--engine", "cycles", "--out",
-                        str(out), "--samples", "256"], check=True, capture_output=True)
+    def cycles_with(*options):
+        def cycles(scene, out):
+            py = out.with_suffix(".py")
+            subprocess.run([str(build / "scene_export" / "scene_export"), str(scene), "--to",
+                            "blender", "-o", str(py)] + list(options), check=True,
+                           capture_output=True)
+            subprocess.run(["blender", "-b", "-P", str(py), "--", "--engine", "cycles",
+                            "--out", str(out), "--samples", "256"], check=True,
+                           capture_output=True)
+        return cycles
     out = [("reference", lmm("reference")), ("lmm", lmm("lmm")), ("gl_shafts", gl)]
     if shutil.which("povray"):
         out.append(("povray", pov))
     if shutil.which("blender"):
-        out.append(("cycles", cycles))
+        out.append(("cycles", cycles_with()))
+        out.append(("cycles_unscaled", cycles_with("--scale", "none")))
     return out
 
 
@@ -77,8 +84,10 @@ def main(argv=None):
     ap.add_argument("--build-dir", default="build")
     ap.add_argument("--width", type=int, default=48)
     ap.add_argument("--renderers", default="reference,lmm,gl_shafts,povray",
-                    help="comma-separated, of reference, lmm, gl_shafts, povray and cycles "
-                         "(Blender's Cycles, 256 samples; slow)")
+                    help="comma-separated, of reference, lmm, gl_shafts, povray, cycles "
+                         "(Blender's Cycles, 256 samples; slow) and cycles_unscaled (the "
+                         "same, exported with --scale none: the scene's own units and "
+                         "position)")
     args = ap.parse_args(argv)
     build = Path(args.build_dir).resolve()
     w, h = args.width, args.width * 3 // 4

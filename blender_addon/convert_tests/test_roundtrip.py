@@ -138,6 +138,43 @@ rel, _ = H.render_difference(build, src, out, work)
 H.check("the round trip renders the same image (mean relative difference %.2g <= %g)"
         % (rel, IMAGE_BOUND), rel <= IMAGE_BOUND)
 
+# A scene Cycles' single precision cannot hold in its own units: SCENE with
+# every length times 1e-9 (coefficients over it, intensities times its
+# square) is imported scaled back by the writer's frame (1e9, stated in a
+# message and the collection's properties), and exports as SCENE, the same
+# image (docs/scene_export.md, "Precision").
+def scaled(o, k, key=""):
+    if isinstance(o, dict):
+        return {a: scaled(b, k, a) for a, b in o.items()}
+    if isinstance(o, list):
+        return [scaled(b, k, key) for b in o]
+    if isinstance(o, (int, float)) and not isinstance(o, bool):
+        if key in ("position", "look_at", "corner", "u", "v", "min", "max", "radius"):
+            return o * k
+        if key in ("sigma_s", "sigma_a"):
+            return o / k
+        if key == "intensity":
+            return o * k * k
+    return o
+
+
+A.reset()
+tiny = os.path.join(work, "tiny.json")
+with open(tiny, "w") as f:
+    json.dump(scaled(SCENE, 1e-9), f)
+notes = importer.import_scene(bpy.context, tiny, lib_path=lib)
+coll = bpy.context.scene.collection.children["tiny"]
+H.check("a scene scaled by 1e-9 is imported scaled by 1e9, and says so",
+        any("multiplied by 1e+09" in n for n in notes) and coll["shafts_scale"] == 1e9, notes)
+e = export_scene(depsgraph())
+out = os.path.join(work, "tiny_back.json")
+write_files(e, out)
+H.near("a scene scaled by 1e-9: the camera comes back in the scaled frame",
+       e.scene["camera"]["position"], SCENE["camera"]["position"], 1e-4)
+rel, _ = H.render_difference(build, src, out, work)
+H.check("a scene scaled by 1e-9: the same image as the plain scene (mean relative "
+        "difference %.2g <= %g)" % (rel, IMAGE_BOUND), rel <= IMAGE_BOUND)
+
 # Light maps: the import's cards come back as the lights' maps.
 testdata = os.path.join(os.path.dirname(os.path.dirname(H.HERE)), "scene_export", "testdata")
 for name, kind in (("spot_gobo", "spot"), ("sun_window", "directional")):

@@ -105,10 +105,6 @@ def black_bound(renderer, case):
 # check is shown as a known failure and does not fail the suite; once it
 # passes the report says so, and the entry should be removed.
 KNOWN_ISSUES = {
-    ("povray", "camera_5e7_radii", "error"): "59% at 5e5 radii and 65% at 5e7 (48x36): "
-        "the exporter shrinks the scene to keep the camera within POV-Ray's reach "
-        "(0.0069 units across at 5e7 radii) and warns that POV-Ray's 1e-3 tolerances are "
-        "then not negligible (issue 12, part 5; scene_export's owners)",
 }
 
 

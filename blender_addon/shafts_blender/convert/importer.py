@@ -9,6 +9,14 @@ object: world-space triangle meshes (spheres and cylinders tessellated),
 materials as sums of closures, lights in Blender's units, light maps as
 shadow-only cards, the medium as a box with a volume material.
 
+A scene beyond what Cycles' single precision holds in its own units and
+position (docs/scene_export.md, "Precision") is imported scaled and moved as
+the writer chose (scene_export/se_scale.h): the collection's custom
+properties shafts_scale and shafts_origin hold the frame (a scene point p
+is at (p - shafts_origin) * shafts_scale, axes as in coords.py), and the
+import's messages say so. A scene of ordinary size near its origin is
+imported as it is.
+
 The library is shafts.py's (shafts.load_library: an explicit path, the
 environment variable SHAFTS_LIB, libshafts.so next to the package, then the
 repository's build/libshafts.so), its errors read through shafts.py's
@@ -69,7 +77,7 @@ def import_scene(context, scene_path, lib_path=None):
         scene.render.resolution_x = int(r.get("width", scene.render.resolution_x))
         scene.render.resolution_y = int(r.get("height", scene.render.resolution_y))
         scene.render.resolution_percentage = 100
-        return [str(n) for n in data.get("notes", [])]
+        return frame_message(collection, data) + [str(n) for n in data.get("notes", [])]
     except blender_build.DataError as e:
         _remove(collection)
         raise ImportFailed(str(e))
@@ -78,6 +86,22 @@ def import_scene(context, scene_path, lib_path=None):
         raise
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+def frame_message(collection, data):
+    """The writer's frame, kept on the collection; a message (in a list) if
+    the scene was scaled or moved, else []."""
+    frame = data.get("frame", {})
+    scale = float(frame.get("scale", 1.0))
+    origin = [float(x) for x in frame.get("origin", [0.0, 0.0, 0.0])]
+    collection["shafts_scale"] = scale
+    collection["shafts_origin"] = origin
+    if scale == 1.0 and not any(origin):
+        return []
+    return ["the scene is imported with lengths multiplied by %g and its point (%.17g, "
+            "%.17g, %.17g) at the origin, where Cycles' single precision holds it "
+            "(the same image; collection properties shafts_scale, shafts_origin)"
+            % (scale, origin[0], origin[1], origin[2])]
 
 
 def _remove(collection):
