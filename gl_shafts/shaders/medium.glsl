@@ -67,6 +67,14 @@ vec3 atmo_point(vec3 q, vec3 w) {
   float r = length(q);
   return vec3(r, (r - u_rg) * (r + u_rg), dot(q, w) / r);
 }
+
+// The distance along the ray from a point (atmo_point's a) to the
+// ground's nearer meeting (atmo.glsl's ground_t), BIG if it misses it.
+float atmo_ground_t(vec3 a) {
+  if (!hits_ground(a.x, a.y, a.z)) return BIG;
+  float disc = a.x * a.x * a.z * a.z - a.y;
+  return max(a.y, 0.0) / max(-a.x * a.z + sqrt(max(disc, 0.0)), 1e-30);
+}
 #else
 // The part [t0, t1] of o + t d, t in [lo, hi], inside the region (empty
 // when t0 >= t1).
@@ -75,6 +83,17 @@ vec2 medium_clip(vec3 o, vec3 d, float lo, float hi) { return box_clip(o, d, lo,
 // The distance from p, inside the region, to its boundary along unit w.
 float medium_exit(vec3 p, vec3 w) { return box_exit(p, w); }
 #endif
+
+// Whether the medium hides the point at view depth z on the pixel ray o +
+// z d from the eye: an atmosphere's ground in front of it.
+bool medium_hides(vec3 o, vec3 d, float z) {
+#if MEDIUM == GS_MEDIUM_ATMOSPHERE
+  float dl = length(d);
+  return atmo_ground_t(atmo_point(o - u_zref * d - u_atmo_c, d / dl)) < (z + u_zref) * dl;
+#else
+  return false;
+#endif
+}
 
 #if MEDIUM == GS_MEDIUM_HEIGHT_FOG
 // The relative density at height y. The exponent is held below 80, where
@@ -98,11 +117,9 @@ vec3 optical_depth_span(vec3 o, vec3 d, float dl, float t0, float t1) {
   vec3 w = d / dl, q0 = o + t0 * d - u_atmo_c, q1 = q0 + len * w;
   vec3 a = atmo_point(q0, w);
   if (hits_ground(a.x, a.y, a.z)) {
-    // The ground's nearer meeting (atmo.glsl's ground_t): the span ends
-    // short of it or is blocked; then the reverse reaches the top.
-    float disc = a.x * a.x * a.z * a.z - a.y;
-    float tg = max(a.y, 0.0) / max(-a.x * a.z + sqrt(max(disc, 0.0)), 1e-30);
-    if (tg < len) return vec3(ATMO_OPAQUE);
+    // The span ends short of the ground or is blocked; then the reverse
+    // reaches the top.
+    if (atmo_ground_t(a) < len) return vec3(ATMO_OPAQUE);
     vec3 b = atmo_point(q1, -w);
     return max(tau_top(b.x, b.y, b.z) - tau_top(a.x, a.y, -a.z), 0.0);
   }

@@ -91,6 +91,8 @@ void main() {
   float t = dot(p - u_org, u_fwd);
   vec3 n = normalize(v_nrm);
 #endif
+  // An atmosphere's ground in front hides the surface (medium.glsl).
+  if (medium_hides(o, d, t)) discard;
   // The direction from the eye: the pixel's ray (p - eye cancelled for a
   // camera far away).
   vec3 view = d;
