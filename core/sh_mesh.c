@@ -21,6 +21,7 @@
 #include "sh_confine.h"
 #include "sh_file.h"
 #include "sh_gltf_check.h"
+#include "sh_obj_check.h"
 #include "sh_off.h"
 #include "sh_ply.h"
 
@@ -175,16 +176,23 @@ static char *dir_of(const char *path) {
  * then). NULL for any other file. */
 typedef sh_status (*own_reader)(const char *path, const char *data, size_t size,
                                 sh_mesh *mesh, sh_error *err);
+/* Whether one of assimp's importers claims the extension of `path` (then
+ * assimp gives the file to it, whatever the file holds; otherwise it asks
+ * each importer whether the file's first bytes look like its format). */
+static int assimp_claims(const char *path) {
+  char ext[16], dotted[17];
+  sh_file_extension(path, ext, sizeof ext);
+  snprintf(dotted, sizeof dotted, ".%s", ext);
+  const sh__assimp *ai = sh__assimp_get(path, NULL);
+  return ai && ext[0] && ai->is_extension_supported(dotted);
+}
+
 static own_reader own_reader_of(const char *path, const unsigned char *head, size_t n) {
   if (sh__ply_magic(head, n)) return sh__ply_read;
   char ext[16];
   sh_file_extension(path, ext, sizeof ext);
   if (!strcmp(ext, "off")) return sh__off_read;
-  if (!sh__off_magic(head, n)) return NULL;
-  char dotted[sizeof ext + 1];
-  snprintf(dotted, sizeof dotted, ".%s", ext);
-  const sh__assimp *ai = sh__assimp_get(path, NULL);
-  return ai && ext[0] && ai->is_extension_supported(dotted) ? NULL : sh__off_read;
+  return sh__off_magic(head, n) && !assimp_claims(path) ? sh__off_read : NULL;
 }
 
 /* Reads the mesh `path` of `size` bytes whole, after checking that it lies
@@ -261,16 +269,21 @@ static sh_status load_own(const char *path, const char *root, long long size,
   return st;
 }
 
-/* A file assimp's glTF importers could read goes through sh_gltf_check.h
- * first (what assimp allocates or follows unchecked). */
-static sh_status check_gltf(const char *path, const char *root, long long size,
-                            sh_error *err) {
-  if (!sh__gltf_candidate(path)) return SH_OK;
+/* The checks of what assimp does not bound (sh_gltf_check.h,
+ * sh_obj_check.h), for the files its glTF and OBJ importers could take: by
+ * their extensions, or, for OBJ, any extension assimp does not claim
+ * (then its OBJ importer may take the file by its first lines). */
+static sh_status check_before_assimp(const char *path, const char *root, long long size,
+                                     sh_error *err) {
+  char ext[8];
+  sh_file_extension(path, ext, sizeof ext);
+  int gltf = sh__gltf_candidate(path), obj = !strcmp(ext, "obj") || !assimp_claims(path);
+  if (!gltf && !obj) return SH_OK;
   char *data;
   size_t got;
   sh_status st = read_confined(path, root, size, &data, &got, err);
-  if (st != SH_OK) return st;
-  st = sh__gltf_check(path, data, got, err);
+  if (st == SH_OK && gltf) st = sh__gltf_check(path, data, got, err);
+  if (st == SH_OK && obj) st = sh__obj_check(path, data, got, err);
   free(data);
   return st;
 }
@@ -304,7 +317,7 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   rs = load_own(path, root, size, mesh, &handled, err);
   if (handled || rs != SH_OK)
     return rs;
-  if ((rs = check_gltf(path, root, size, err)) != SH_OK)
+  if ((rs = check_before_assimp(path, root, size, err)) != SH_OK)
     return rs;
 
   const sh__assimp *ai = sh__assimp_get(path, err);

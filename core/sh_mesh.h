@@ -30,7 +30,8 @@ void sh_mesh_free(sh_mesh *mesh);
  * forever on some files), and an OFF file (named *.off, or whose first
  * bytes are "off" if assimp knows no other format by its extension) by
  * sh_off.h's (assimp's allocates what its header declares); a glTF file
- * is checked by sh_gltf_check.h before assimp reads it. Every file the load opens (the mesh, an OBJ's material
+ * is checked by sh_gltf_check.h before assimp reads it, an OBJ file's
+ * polygons by sh_obj_check.h. Every file the load opens (the mesh, an OBJ's material
  * library, a glTF's buffers) must resolve inside the directory `root` (NULL:
  * the mesh's own directory); a file outside it is refused (sh_confine.h).
  * A missing file is SH_ERR_IO; an unreadable one, one with no triangles,
