@@ -3,7 +3,11 @@
  * where the time goes, and the error against the converged reference
  * renderer, as a Markdown table. With --sweep-planes or --sweep-lattice it
  * measures how error and time move with the number of planes and lattice
- * points (the seed's figures 5 and 6). bench.sh runs the standard set. */
+ * points (the seed's figures 5 and 6). bench.sh runs the standard set.
+ * For an atmosphere the planes column is its sampling planes (the eye in
+ * the air) or spheres (from space), the lattice time its layers drawn on
+ * the lattice of pixels, and the planes time its full-resolution passes
+ * (gs_stats). */
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -180,10 +184,18 @@ static sh_status run(const char *path, sh_scene *scene,
       snprintf(err_col, sizeof err_col, "%.2f", 100 * e.rel_rms);
       snprintf(bias_col, sizeof bias_col, "%.2f", 100 * e.mean_rel);
     }
-    printf("| %s | %dx%d | %d | %dx%d | %s%s | %g | %g | %.1f (%.1f) | %.1f | %.1f | %.1f "
+    /* The planes a light sweeps; an atmosphere's own count (its sampling
+     * planes or spheres, from the frame's stats). */
+    char planes[32];
+    if (m->spheres > 0) snprintf(planes, sizeof planes, "%ld spheres", m->spheres);
+    else if (scene->medium.type == SH_MEDIUM_ATMOSPHERE)
+      snprintf(planes, sizeof planes, "%ld", m->planes);
+    else
+      snprintf(planes, sizeof planes, "%d",
+               scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes);
+    printf("| %s | %dx%d | %s | %dx%d | %s%s | %g | %g | %.1f (%.1f) | %.1f | %.1f | %.1f "
            "| %.1f / %.1f / %.1f / %.1f / %.1f | %.2f | %s | %s | %s: %s (%s) |\n",
-           base, img.width, img.height,
-           scene->nlights ? gs_light_planes(&o, scene->lights[0].type) : o.planes,
+           base, img.width, img.height, planes,
            o.lattice_u, o.lattice_v, gs_option_name("xi", o.xi),
            o.jitter ? " +jitter" : "", o.sub_angle_deg, o.sub_texels, 1000 * best, 1000 * med,
            1000 * cpu, 1000 * (setup + first), 1000 * setup, 1000 * m->shadow_seconds,

@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include "sh_time.h"
 
 extern const gs__glsl gs__glsl_atmo_layer_frag, gs__glsl_atmo_compose_frag;
 
@@ -156,14 +157,14 @@ static sh_status lattice_fit(gs__atmo_gl *g, int w, int h, sh_error *err) {
   return gs__gl_check("creating the sky's lattice", err);
 }
 
-/* Draws the n layers (planes or spheres: their depths or radii in
- * layer[]) with the bound program prog, u_lat_scale = scale. */
-static void draw_layers(GLuint prog, const gs__target *t, const double *layer, int n,
-                        double scale) {
-  gs__uniform_f(prog, "u_lat_scale", scale);
-  for (int k = 0; k < n; k++) {
-    gs__uniform_2f(prog, "u_layer", layer[k], layer[k + 1]);
-    gs__target_draw_polygon(t, FULL_SCREEN, 4);
+/* Sets the layers' bounds (layer[0..n]: depths or radii) for the bound
+ * program prog (atmo.glsl's u_layers, u_nlayers). */
+static void set_layers(GLuint prog, const double *layer, int n) {
+  gs__uniform_i(prog, "u_nlayers", n);
+  for (int k = 0; k <= n; k++) {
+    char name[32];
+    snprintf(name, sizeof name, "u_layers[%d]", k);
+    gs__uniform_f(prog, name, layer[k]);
   }
 }
 
@@ -176,8 +177,8 @@ static void draw_layers(GLuint prog, const gs__target *t, const double *layer, i
 static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target *t,
                           const eye_frame *e, const sh_light *l,
                           const gs__light_setup *ls, const gs__shadow_map *sm,
-                          int first,
-                          const double *layer, int n, int step, sh_error *err) {
+                          int first, const double *layer, int n, int step,
+                          gs__atmo_counts *c, double *clock, sh_error *err) {
   GLuint layers = 0, prog;
   sh_status st;
   gs__params *p;
@@ -190,12 +191,13 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
     st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
                          &layers, err);
     if (st != SH_OK) return st;
-    static const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(g->lat_fbo, GL_COLOR, 0, zero);
     glBindFramebuffer(GL_FRAMEBUFFER, g->lat_fbo);
     glViewport(0, 0, lw, lh);
-    glEnable(GL_BLEND);
-    draw_layers(layers, t, layer, n, step);
+    glDisable(GL_BLEND);
+    gs__uniform_f(layers, "u_lat_scale", step);
+    set_layers(layers, layer, n);
+    gs__target_draw_polygon(t, FULL_SCREEN, 4);
+    c->lattice_seconds += gs__gl_lap(clock);
     glBindTextureUnit(GS_UNIT_ATMO_LATTICE, g->lat_tex);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
@@ -211,12 +213,7 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
     if (st != SH_OK) return st;
     gs__uniform_f(prog, "u_lat_scale", 1.0);
     gs__uniform_f(prog, "u_lat_step", step);
-    gs__uniform_i(prog, "u_nlayers", n);
-    for (int k = 0; fix && k <= n; k++) {
-      char name[32];
-      snprintf(name, sizeof name, "u_layers[%d]", k);
-      gs__uniform_f(prog, name, layer[k]);
-    }
+    if (fix) set_layers(prog, layer, n);
     if (first && !fix) glDisable(GL_BLEND);
     else glEnable(GL_BLEND);
     /* The compose pass marks the pixels the lattice cannot serve at depth
@@ -231,6 +228,8 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
       glDepthFunc(GL_EQUAL);
     }
     gs__target_draw_polygon(t, FULL_SCREEN, 4);
+    if (fix) c->fixup_seconds += gs__gl_lap(clock);
+    else c->compose_seconds += gs__gl_lap(clock);
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
   }
@@ -240,8 +239,14 @@ static sh_status draw_sun(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
   st = gs__program_use(fr->progs, &gs__glsl_screen_vert, &gs__glsl_atmo_layer_frag, p,
                        &layers, err);
   if (st != SH_OK) return st;
+  /* Added to the image's colour; its alpha (the layers' ray class) left. */
   glEnable(GL_BLEND);
-  draw_layers(layers, t, layer, n, 1.0);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_FALSE);
+  gs__uniform_f(layers, "u_lat_scale", 1.0);
+  set_layers(layers, layer, n);
+  gs__target_draw_polygon(t, FULL_SCREEN, 4);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  c->layer_seconds += gs__gl_lap(clock);
   return SH_OK;
 }
 
@@ -256,7 +261,8 @@ sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
   if (n < 1 || n > GS_ATMO_MAX_LAYERS)
     return sh_error_set(err, SH_ERR_ARG, "the atmosphere takes 1 to %d %s, not %d",
                         GS_ATMO_MAX_LAYERS, outside ? "sampling spheres" : "sampling planes", n);
-  gs__atmo_counts c = {0, 0, outside};
+  gs__atmo_counts c = {0, 0, outside, 0, 0, 0, 0};
+  double clock = sh_seconds();
   double *layer = malloc((size_t)(n + 1) * sizeof *layer);
   if (!layer) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   if (outside)
@@ -284,14 +290,15 @@ sh_status gs__atmo_render(gs__atmo_gl *g, const gs__frame *fr, const gs__target 
     const gs__light_setup *ls = set->lights ? &set->lights[i] : NULL;
     const gs__shadow_map *sm = ls && ls->shadow != GS__SHADOW_NONE ? &set->shadows[i] : NULL;
     if (sm) gs__shadow_bind(sm);
-    st = draw_sun(g, fr, t, &e, l, ls, sm, first, layer, n, set->lattice_step, err);
+    st = draw_sun(g, fr, t, &e, l, ls, sm, first, layer, n, set->lattice_step, &c, &clock,
+                  err);
     first = 0;
     if (outside) c.spheres += n;
     else c.planes += n;
   }
   /* No sun: the background through the air alone. */
   if (st == SH_OK && first)
-    st = draw_sun(g, fr, t, &e, NULL, NULL, NULL, 1, layer, n, 1, err);
+    st = draw_sun(g, fr, t, &e, NULL, NULL, NULL, 1, layer, n, 1, &c, &clock, err);
   glDisable(GL_BLEND);
   free(layer);
   if (counts) *counts = c;

@@ -32,11 +32,11 @@
  * planes of the sky and the spheres of space. */
 #define GS__ATMO_TABLE_R 64
 #define GS__ATMO_TABLE_MU 256
-#define GS__ATMO_PLANES 16
-#define GS__ATMO_SPHERES 10
+#define GS__ATMO_PLANES 12
+#define GS__ATMO_SPHERES 6
 /* The lattice's default step: the most pixels (at most 4) that fit in
  * half a degree of the camera's vertical field of view, at least 1. */
-#define GS__ATMO_LATTICE_DEG 0.5
+#define GS__ATMO_LATTICE_DEG 0.6
 #define GS__ATMO_LATTICE_MAX 4
 
 typedef struct gs__atmo_gl {
@@ -74,10 +74,17 @@ sh_status gs__atmo_gl_init(gs__atmo_gl *g, const gs__atmo *a,
                            const gs__atmo_source *src, sh_error *err);
 void gs__atmo_gl_free(gs__atmo_gl *g);
 
-/* What a frame of the atmosphere drew. */
+/* What a frame of the atmosphere drew, and where its time went: each pass
+ * is ended by glFinish (gs__gl_lap), as gs_stats' stages are, so that
+ * llvmpipe's shader time, anonymous JIT code to a profiler, is counted to
+ * its pass. */
 typedef struct gs__atmo_counts {
   int planes, spheres; /* sampling planes or spheres drawn (over all suns) */
   int eye_outside;     /* 1: spheres (the eye above the top) */
+  double lattice_seconds; /* the layers drawn on the lattice */
+  double compose_seconds; /* the full-resolution compose pass */
+  double fixup_seconds;   /* the pixels the lattice cannot serve */
+  double layer_seconds;   /* the layers at full resolution (no lattice) */
 } gs__atmo_counts;
 
 /* Draws the atmosphere seen by fr's camera into t's image (replacing what

@@ -8,9 +8,9 @@
  * the images and their difference (gl_shafts_atmo_*.exr).
  * Measured (relative RMS, sh_image_compare, 192 pixels a view at offsets
  * that vary, so that they do not all fall on lattice points): at 64x48
- * with the layers at full resolution (16 planes, 10 spheres) 0.045%,
- * 0.090%, 0.020% and 0.040%, bound 0.3%; on a lattice of step 4 at
- * 192x144 0.67%, 0.26%, 0.13% and 0.22%, bound 1.5% (the step is 1.25
+ * with the layers at full resolution (12 planes, 6 spheres) 0.041%,
+ * 0.218%, 0.013% and 0.082%, bound 0.3%; on a lattice of step 4 at
+ * 192x144 0.66%, 0.34%, 0.12% and 0.24%, bound 1.5% (the step is 1.25
  * degrees there; docs/gl_shafts.md gives the errors at 640x480).
  * `gs_atmo_render_test
  * W H STEP PLANES SPHERES LATTICE` renders one size and prints the errors

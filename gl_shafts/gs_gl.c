@@ -1,5 +1,7 @@
 #include "gs_gl.h"
 
+#include "sh_time.h"
+
 #include <stdio.h>
 #include <string.h>
 
@@ -31,6 +33,13 @@ static const char *error_name(GLenum e) {
   case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
   default: return "an unknown GL error";
   }
+}
+
+double gs__gl_lap(double *t) {
+  glFinish();
+  double now = sh_seconds(), d = now - *t;
+  *t = now;
+  return d;
 }
 
 sh_status gs__gl_check(const char *what, sh_error *err) {

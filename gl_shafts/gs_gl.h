@@ -134,6 +134,10 @@ sh_status gs__gl_setup(char *renderer, size_t renderer_size, char *vendor,
  * running) and the GL error codes. */
 sh_status gs__gl_check(const char *what, sh_error *err);
 
+/* Waits for GL's work (glFinish) and returns the seconds since *t, which
+ * it sets to now (sh_seconds): a stage's time, its shaders' included. */
+double gs__gl_lap(double *t);
+
 #define glGetError gs__gl_current->GetError
 #define glGetString gs__gl_current->GetString
 #define glGetIntegerv gs__gl_current->GetIntegerv

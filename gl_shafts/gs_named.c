@@ -137,13 +137,14 @@ size_t gs_stats_json(const gs_stats *s, char *buf, size_t size) {
   sh__json_num(o, "setup_seconds", s->setup_seconds);
   sh__json_num(o, "shadow_seconds", s->shadow_seconds);
   sh__json_num(o, "surface_seconds", s->surface_seconds);
-  if (s->lattice_points > 0) /* xi on the lattice */
+  if (s->lattice_points > 0 || s->lattice_seconds > 0) /* xi, an atmosphere's lattice */
     sh__json_num(o, "lattice_seconds", s->lattice_seconds);
   sh__json_num(o, "plane_seconds", s->plane_seconds);
   sh__json_num(o, "readback_seconds", s->readback_seconds);
   sh__json_num(o, "lights_swept", s->lights_swept);
   sh__json_num(o, "shadow_maps", s->shadow_maps);
   sh__json_num(o, "planes", (double)s->planes);
+  if (s->spheres > 0) sh__json_num(o, "spheres", (double)s->spheres);
   if (s->lattice_points > 0)
     sh__json_num(o, "lattice_points", (double)s->lattice_points);
   sh__json_num(o, "fragments", s->fragments);

@@ -317,12 +317,6 @@ sh_status gs_renderer_sync(gs_renderer *r, unsigned changed, sh_error *err) {
 }
 
 /* Waits for GL and returns the time since *t, resetting it. */
-static double lap(double *t) {
-  glFinish();
-  double now = sh_seconds(), d = now - *t;
-  *t = now;
-  return d;
-}
 
 static void to_rgb(const float *rgba, int w, int h, float *rgb) {
   /* GL's rows run bottom to top. */
@@ -371,12 +365,12 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
                            &r->geom, r->geom_version, &drawn, err);
     s.shadow_maps += drawn;
   }
-  if (st == SH_OK) s.shadow_seconds = lap(&t);
+  if (st == SH_OK) s.shadow_seconds = gs__gl_lap(&t);
 
   if (st == SH_OK && (!r->atmo || scene->nshapes))
     st = gs__surface_render(&fr, &r->geom, r->lights, r->shadows, r->maps,
                             &r->target, err);
-  if (st == SH_OK) s.surface_seconds = lap(&t);
+  if (st == SH_OK) s.surface_seconds = gs__gl_lap(&t);
 
   gs__sweep_counts counts = {0, 0, 0};
   for (int i = 0; i < nsweep && st == SH_OK; i++) {
@@ -397,11 +391,11 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
                             o->lattice_v, planes, map, &points, err);
       s.lattice_points += points;
       job.lattice = &r->lattices[i];
-      s.lattice_seconds += lap(&t);
+      s.lattice_seconds += gs__gl_lap(&t);
     }
     if (st == SH_OK)
       st = gs__sweep_light(&r->sweep, &job, &r->target, &counts, err);
-    s.plane_seconds += lap(&t);
+    s.plane_seconds += gs__gl_lap(&t);
   }
   if (st == SH_OK && r->atmo) {
     /* --planes gives the sampling planes or spheres; else their own
@@ -418,7 +412,13 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
     }
     gs__atmo_counts ac;
     st = gs__atmo_render(r->atmo, &fr, &r->target, &set, &ac, err);
-    counts.planes += ac.planes + ac.spheres;
+    s.spheres = ac.spheres;
+    counts.planes += ac.planes;
+    /* The suns' layers drawn on the lattice count as the lattice's time,
+     * their full-resolution passes as the planes'. */
+    gs__gl_lap(&t);
+    s.lattice_seconds += ac.lattice_seconds;
+    s.plane_seconds += ac.compose_seconds + ac.fixup_seconds + ac.layer_seconds;
     /* Point and spot lights: a pass each, as many angle steps as the sky
      * has planes. */
     for (int i = 0; i < r->nlights && st == SH_OK; i++) {
@@ -429,7 +429,7 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
                                  err);
       s.lights_swept++;
     }
-    s.plane_seconds += lap(&t);
+    s.plane_seconds += gs__gl_lap(&t);
   }
   s.planes = counts.planes;
   s.fragments = counts.fragments;
@@ -442,7 +442,7 @@ static sh_status draw(gs_renderer *r, float *rgb, gs_stats *stats, sh_error *err
     glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, r->readback);
     st = gs__gl_check("reading the image back", err);
     if (st == SH_OK) to_rgb(r->readback, w, h, rgb);
-    s.readback_seconds = lap(&t);
+    s.readback_seconds = gs__gl_lap(&t);
   }
   s.seconds = sh_seconds() - start;
   s.triangles = r->geom.triangles;

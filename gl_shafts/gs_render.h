@@ -148,8 +148,12 @@ typedef struct gs_stats {
   double seconds;          /* the frame: everything below together */
   double shadow_seconds;   /* working out the lights' volumes, shadow maps */
   double surface_seconds;  /* surfaces and background */
-  double lattice_seconds;  /* evaluating and uploading xi on the lattices */
-  double plane_seconds;    /* the sweep: intervals and planes */
+  double lattice_seconds;  /* evaluating and uploading xi on the lattices;
+                              an atmosphere: its layers drawn on the
+                              lattice of pixels */
+  double plane_seconds;    /* the sweep: intervals and planes; an
+                              atmosphere: its full-resolution passes
+                              (compose, fix-up) */
   double readback_seconds; /* reading the image back from GL */
   double setup_seconds;    /* gs_render only: creating the context,
                               uploading the scene, compiling shaders
@@ -157,7 +161,11 @@ typedef struct gs_stats {
   int lights_swept;        /* lights whose lit volume the camera sees */
   int shadow_maps;         /* shadow maps rendered in this draw (a map
                               whose key did not change is kept) */
-  long planes;             /* planes drawn, over all lights */
+  long planes;             /* planes drawn, over all lights (an
+                              atmosphere's sampling planes, the eye in
+                              the air) */
+  long spheres;            /* an atmosphere's sampling spheres (the eye
+                              above its top), over all suns */
   long lattice_points;     /* xi evaluations on the CPU */
   double fragments;        /* plane fragments that added light */
   double fragments_rasterized; /* pixels the planes' polygons cover */

@@ -231,8 +231,11 @@ vec3 g_tau_e, g_tau_chord;
 // along the ray, the sun unblocked but for the ground.
 vec3 inscatter_at(Ray ry, float t) {
   Pt p = point_at(ry, t);
-  return scatter_at(p.h, ry.pr, ry.pm) * sun_tr(p.r, p.rho2, p.mu_sp) *
-         exp(-max(EYE_TAU(p), vec3(0.0)));
+  // Both legs' optical depths summed, one exponential: the sun's (0 where
+  // the ground blocks it) and the eye's.
+  vec3 tau = tau_top(p.r, p.rho2, p.mu_sp) + max(EYE_TAU(p), vec3(0.0));
+  return hits_ground(p.r, p.rho2, p.mu_sp) ? vec3(0.0)
+                                           : scatter_at(p.h, ry.pr, ry.pm) * exp(-tau);
 }
 
 // The scattered radiance per unit irradiance of the ray's lit stretch
@@ -246,9 +249,20 @@ vec3 inscatter(Ray ry, float ta, float tb) {
   return sum * half_len;
 }
 
-// inscatter over [ta, tb] without the planet's shadow sh (shadow_span).
+// inscatter over [ta, tb] without the planet's shadow sh (shadow_span):
+// over the part before the shadow and the part after it, those that are
+// not empty. Optional work is a loop rather than a branch throughout the
+// atmosphere's shaders: llvmpipe runs both sides of a branch for every
+// pixel of a SIMD vector, but leaves a loop as soon as none of the vector's
+// pixels continues it, so a part no pixel of the vector has costs nothing.
 vec3 inscatter_open(Ray ry, float ta, float tb, vec2 sh) {
-  return inscatter(ry, ta, min(tb, sh.x)) + inscatter(ry, max(ta, sh.y), tb);
+  vec2 p0 = vec2(ta, min(tb, sh.x)), p1 = vec2(max(ta, sh.y), tb);
+  vec3 L = vec3(0.0);
+  for (int i = p0.y > p0.x ? 0 : 1; i < (p1.y > p1.x ? 2 : 1); i++) {
+    vec2 p = i == 0 ? p0 : p1;
+    L += inscatter(ry, p.x, p.y);
+  }
+  return L;
 }
 
 // Shapes in the air: inscatter_lit, inscatter_open where the ray ends on
@@ -319,10 +333,37 @@ vec3 layer_radiance(Setup s, float lo, float hi) {
 #if EYE_OUTSIDE
   float sb = sqrt((hi - s.b) * (hi + s.b));
   float sa = s.b < lo ? sqrt((lo - s.b) * (lo + s.b)) : 0.0;
-  vec3 L = inscatter_lit(s.ry, s.tp - sb, s.tp - sa, s.sh);
-  if (!s.ground) L += inscatter_lit(s.ry, s.tp + sa, s.tp + sb, s.sh);
+  vec3 L = vec3(0.0);
+  for (int i = 0; i < (s.ground ? 1 : 2); i++) {
+    vec2 p = i == 0 ? vec2(s.tp - sb, s.tp - sa) : vec2(s.tp + sa, s.tp + sb);
+    L += inscatter_lit(s.ry, p.x, p.y, s.sh);
+  }
   return L;
 #else
   return inscatter_lit(s.ry, lo * s.vl, min(hi * s.vl, s.tend), s.sh);
 #endif
+}
+
+// The layers' bounds (view depths or radii, u_nlayers + 1 of them,
+// ascending), uniforms set by gs_atmo_render.c.
+uniform float u_layers[GS_ATMO_MAX_LAYERS + 1];
+uniform int u_nlayers;
+
+// The scattered radiance per unit irradiance of the whole ray: the sum of
+// every layer's (layer_radiance), with setup_tau done once for them all.
+// The loop runs over the layers the ray meets alone (a loop, so that
+// layers no pixel of a SIMD vector meets cost nothing: inscatter_open):
+// from space from the innermost shell the ray reaches, inside the air up
+// to the slab where the ray ends.
+vec3 layers_radiance(inout Setup s) {
+  setup_tau(s);
+  int k = 0;
+#if EYE_OUTSIDE
+  if (s.ry.mu >= 0.0) k = u_nlayers;
+  for (; k < u_nlayers && s.b >= u_layers[k + 1]; k++) {}
+#endif
+  vec3 L = vec3(0.0);
+  for (; k < u_nlayers && !layer_empty(s, u_layers[k], u_layers[k + 1]); k++)
+    L += layer_radiance(s, u_layers[k], u_layers[k + 1]);
+  return L;
 }

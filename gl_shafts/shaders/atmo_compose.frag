@@ -14,7 +14,7 @@
 //   The pixels it cannot serve are marked at depth 1 (0 for the others).
 // With FIXUP 1 (a second pass, added, depth test EQUAL at depth 1): the
 // marked pixels alone, their rays integrated over the same layers
-// (u_layers, u_nlayers) as the planes would at full resolution. It is a
+// (atmo.glsl's layers_radiance) as the lattice's points are. It is a
 // pass of its own because llvmpipe runs both sides of a branch for every
 // pixel of a SIMD vector, but skips the shader for a vector whose
 // fragments all fail the depth test (the Earth from space at 640x480: the
@@ -25,8 +25,6 @@
 layout(location = 0) out vec4 o_color;
 layout(binding = GS_UNIT_ATMO_LATTICE) uniform sampler2D u_lattice;
 uniform float u_lat_step;
-uniform float u_layers[GS_ATMO_MAX_LAYERS + 1];
-uniform int u_nlayers;
 #ifndef FIRST
 #define FIRST 1
 #endif
@@ -44,50 +42,53 @@ vec3 ray_end(Setup s) {
   vec3 tau_eye = vec3(0.0); // to the ground, or along the whole ray
   float tg = -1.0;
 #if EYE_OUTSIDE
+  // One lookup: from the ground point back to the top, or twice from the
+  // ray's lowest point (the whole chord), or nothing where the ray misses.
   float b2g = (s.b - u_rg) * (s.b + u_rg); // b^2 - R_g^2
-  if (s.ry.mu < 0.0 && s.ground) {
-    float sg = sqrt(-b2g);
-    tg = s.tp - sg;
-    tau_eye = tau_top(u_rg, 0.0, sg / u_rg);
-  } else if (s.ry.mu < 0.0 && s.b < u_rt) {
-    tau_eye = 2.0 * tau_top(s.b, b2g, 0.0);
-  }
+  float sg = sqrt(max(-b2g, 0.0));
+  bool ground = s.ry.mu < 0.0 && s.ground;
+  if (ground) tg = s.tp - sg;
+  tau_eye = (ground ? 1.0 : s.ry.mu < 0.0 && s.b < u_rt ? 2.0 : 0.0) *
+            tau_top(ground ? u_rg : s.b, ground ? 0.0 : b2g, ground ? sg / u_rg : 0.0);
 #else
-  if (s.ground) {
-    tg = s.tend;
-    float mu_g = (u_re * s.ry.mu + tg) / u_rg;
-    tau_eye = tau_top(u_rg, 0.0, -mu_g) - tau_top(u_re, u_ce, -s.ry.mu);
-  } else {
-    tau_eye = tau_top(u_re, u_ce, s.ry.mu);
-  }
+  // The eye's depth along the ray, or along its reverse when it meets
+  // the ground; the ground's own lookups in a loop of 0 or 1 trips (see
+  // atmo.glsl's inscatter_open: a branch would cost every pixel of a SIMD
+  // vector both sides).
+  tau_eye = tau_top(u_re, u_ce, s.ground ? -s.ry.mu : s.ry.mu);
+  if (s.ground) tg = s.tend;
 #endif
-  vec3 tr = exp(-max(tau_eye, vec3(0.0)));
-  if (tg > 0.0) {
-    float mu_sg = (u_re * s.ry.mu_s + tg * s.ry.nu) / u_rg;
-    return tr * u_albedo / PI * u_esun * max(mu_sg, 0.0) * sun_tr(u_rg, 0.0, mu_sg) *
-           sun_vis_at(s.ry, tg);
-  }
   vec3 e = s.ry.d - u_lsun;
-  return tr * ((FIRST == 1 ? u_background : vec3(0.0)) +
-               (dot(e, e) <= u_disk_chord2 ? u_disk_radiance : vec3(0.0)));
+  vec3 L = (FIRST == 1 ? u_background : vec3(0.0)) +
+           (dot(e, e) <= u_disk_chord2 ? u_disk_radiance : vec3(0.0));
+  for (int i = 0; i < (tg > 0.0 ? 1 : 0); i++) {
+#if !EYE_OUTSIDE
+    float mu_g = (u_re * s.ry.mu + tg) / u_rg;
+    tau_eye = tau_top(u_rg, 0.0, -mu_g) - tau_eye;
+#endif
+    float mu_sg = (u_re * s.ry.mu_s + tg * s.ry.nu) / u_rg;
+    L = u_albedo / PI * u_esun * max(mu_sg, 0.0) * sun_tr(u_rg, 0.0, mu_sg) *
+        sun_vis_at(s.ry, tg);
+  }
+  return exp(-max(tau_eye, vec3(0.0))) * L;
 }
 
 // Whether the pixel's four lattice neighbours see the class its own ray
-// does, and their bilinear sum.
+// does (their classes are the lattice's alpha), and their bilinear sum.
 bool lattice_serves(Setup s, out vec3 sum) {
   ivec2 size = textureSize(u_lattice, 0);
   vec2 x = gl_FragCoord.xy / u_lat_step - 0.5;
   ivec2 i0 = ivec2(floor(x));
   vec2 f = x - vec2(i0);
-  int own = ray_class(s.ry);
+  float own = float(ray_class(s.ry));
   bool same = true;
   sum = vec3(0.0);
   for (int k = 0; k < 4; k++) {
     ivec2 o = ivec2(k & 1, k >> 1);
-    ivec2 i = clamp(i0 + o, ivec2(0), size - 1);
-    same = same && ray_class(make_ray(normalize(view_ray((vec2(i) + 0.5) * u_lat_step)))) == own;
+    vec4 v = texelFetch(u_lattice, clamp(i0 + o, ivec2(0), size - 1), 0);
+    same = same && v.a == own;
     float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    sum += w * texelFetch(u_lattice, i, 0).rgb;
+    sum += w * v.rgb;
   }
   return same;
 }
@@ -95,10 +96,7 @@ bool lattice_serves(Setup s, out vec3 sum) {
 void main() {
   Setup s = setup_ray(frag_pos());
 #if FIXUP
-  setup_tau(s);
-  vec3 L = vec3(0.0);
-  for (int k = 0; k < u_nlayers; k++) L += layer_radiance(s, u_layers[k], u_layers[k + 1]);
-  o_color = vec4(L * u_esun, 0.0);
+  o_color = vec4(layers_radiance(s) * u_esun, 0.0);
 #else
   vec3 L = ray_end(s);
 #if LATTICE
