@@ -52,20 +52,49 @@ static sh_status sh__mesh_alloc(sh_mesh *mesh, size_t nverts, size_t ntris,
   return SH_OK;
 }
 
+/* How many times over the distinct files of one load (the mesh and the
+ * files it names) assimp may read them, beyond SH__READ_SLACK bytes: an
+ * OBJ naming its material library on each of 3000 lines had assimp parse
+ * the library 3000 times (60 kB: 8.8 s, by hand), so that the work was
+ * the square of the file's size. A load reads its files once or twice,
+ * and the first 200 bytes or so of the mesh once for each importer that
+ * is asked whether it reads it (16 opens for an STL of an unknown
+ * extension). */
+#define SH__READ_TIMES 16
+#define SH__READ_SLACK (1u << 20)
+
 /* assimp's file system for one load: every file assimp opens (the mesh
  * itself, an OBJ's material library, a glTF's buffers) must resolve inside
- * `root`; the first name refused is kept for the error message. */
+ * `root`; the first name refused is kept for the error message. What it
+ * reads is counted against the budget above. */
 typedef struct confined_fs {
   struct aiFileIO io;
   const char *root;
   char refused[512];
   const char *mesh; /* the mesh's own path */
   char **named;     /* the other files opened, resolved (NULL: not kept) */
-  int nnamed, failed;
+  int nnamed, failed, mesh_seen, overread;
+  unsigned long long budget, read; /* bytes */
 } confined_fs;
 
+/* One open file: assimp's handle first, so that its callbacks' pointer is
+ * this. */
+typedef struct fs_file {
+  struct aiFile ai;
+  confined_fs *fs;
+} fs_file;
+
 static size_t fs_read(struct aiFile *f, char *buf, size_t size, size_t n) {
-  return fread(buf, size, n, (FILE *)f->UserData);
+  confined_fs *fs = ((fs_file *)(void *)f)->fs;
+  unsigned long long want = (unsigned long long)size * n;
+  if (size && n > SIZE_MAX / size) return 0;
+  if (fs->read + want > fs->budget) {
+    fs->overread = 1;
+    return 0;
+  }
+  size_t got = fread(buf, size, n, (FILE *)f->UserData);
+  fs->read += (unsigned long long)got * size;
+  return got;
 }
 static size_t fs_write(struct aiFile *f, const char *buf, size_t size,
                        size_t n) {
@@ -112,8 +141,11 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
   int is_mesh = sh__confined(fs->mesh, fs->root, &self) >= 0 && self &&
                 !strcmp(self, resolved);
   free(self);
-  int known = is_mesh;
+  int known = is_mesh && fs->mesh_seen;
   for (int i = 0; i < fs->nnamed && !known; i++) known = !strcmp(fs->named[i], resolved);
+  int first = !known; /* the first open of this file in the load */
+  fs->mesh_seen |= is_mesh;
+  if (!known && is_mesh) known = 1; /* the mesh is not kept */
   if (!known) {
     char **nn = realloc(fs->named, (size_t)(fs->nnamed + 1) * sizeof *nn);
     if (!nn) {
@@ -134,11 +166,14 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
     fclose(fp);
     return NULL;
   }
-  struct aiFile *f = calloc(1, sizeof *f);
-  if (!f) {
+  if (first) fs->budget += SH__READ_TIMES * (unsigned long long)sb.st_size;
+  fs_file *ff = calloc(1, sizeof *ff);
+  if (!ff) {
     fclose(fp);
     return NULL;
   }
+  ff->fs = fs;
+  struct aiFile *f = &ff->ai;
   f->ReadProc = fs_read;
   f->WriteProc = fs_write;
   f->TellProc = fs_tell;
@@ -153,7 +188,7 @@ static void fs_close(struct aiFileIO *io, struct aiFile *f) {
   (void)io;
   if (!f) return;
   fclose((FILE *)f->UserData);
-  free(f);
+  free((fs_file *)(void *)f);
 }
 
 /* The directory part of path ("." if it has none); caller frees. */
@@ -333,6 +368,7 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   fs.io.CloseProc = fs_close;
   fs.io.UserData = (aiUserData)(void *)&fs;
   fs.root = root ? root : own_root;
+  fs.budget = SH__READ_SLACK;
   fs.mesh = path;
   const struct aiScene *scene = ai->import_file_ex(
       path,
@@ -363,6 +399,20 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
         path, fs.refused, fs.root);
     free(own_root);
     return st;
+  }
+  if (fs.overread) {
+    free_named(fs.named, fs.nnamed);
+    fs.named = NULL;
+    fs.nnamed = 0;
+    if (scene) ai->release_import(scene);
+    free(own_root);
+    return sh_error_set(
+        err, SH_ERR_MESH,
+        "cannot load mesh '%s': assimp read it and the files it names more than %d "
+        "times over (%llu bytes of %llu bytes of files): a file named again and "
+        "again, such as one material library on many lines",
+        path, SH__READ_TIMES, fs.read,
+        (fs.budget - SH__READ_SLACK) / SH__READ_TIMES);
   }
   free(own_root);
   /* The caller owns the list from here, whatever follows. */

@@ -1,9 +1,13 @@
-/* Tests of sh_obj_check.h through sh_mesh_load: a face of more corners
- * than SH_OBJ_MAX_CORNERS, whose triangulation in assimp takes time
- * growing as the square of its corners (fuzz/known/obj_polygon: 20001
- * corners, 5 s in the fuzzing build), is refused at once at its line,
- * also when it continues over lines or the file is not named *.obj;
- * faces up to the limit still load. */
+/* Tests of the OBJ files whose work in assimp grew faster than their size,
+ * through sh_mesh_load. A face of more corners than SH_OBJ_MAX_CORNERS,
+ * whose triangulation takes time growing as the square of its corners
+ * (fuzz/known/obj_polygon: 20001 corners, 5 s in the fuzzing build), is
+ * refused at once at its line by sh_obj_check.h, also when it continues
+ * over lines or the file is not named *.obj; faces up to the limit still
+ * load. A file naming itself as its material library on 4900 lines
+ * (fuzz/known/obj_mtllib_repeat), which assimp parsed 4900 times, is
+ * refused by sh_mesh.c's budget of reads; one library named once, or
+ * twice, still loads. */
 #include "sh_mesh_test_util.h"
 
 #include "sh_obj_check.h"
@@ -52,6 +56,21 @@ int main(void) {
     sh_mesh_free(&m);
   }
   free(text);
+  /* Re-reads: the library named on 4900 lines; a library named twice. */
+  n = read_known("obj_mtllib_repeat", buf, sizeof buf);
+  SH_CHECK(n > 1);
+  if (n > 1) {
+    /* The harness names the mesh m.obj. */
+    write_bytes("m.obj", buf + 1, n - 1);
+    sh_mesh m;
+    sh_error err;
+    sh_status s = sh_mesh_load(sh_mesh_test_path, NULL, &m, &err);
+    SH_CHECK(s == SH_ERR_MESH && strstr(err.message, "more than 16 times over"));
+    if (s != SH_ERR_MESH) fprintf(stderr, "obj_mtllib_repeat: status %d\n", s);
+  }
+  write_text("lib.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
+  expect_tris("twice.obj", "mtllib lib.mtl\nmtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+              "usemtl grey\nf 1 2 3\n", 1, 3);
   expect_tris("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n 3 4\n", 2, 4);
   SH_TEST_DONE();
 }
