@@ -56,20 +56,26 @@ grep -q 'function { min(1, exp((' "$dir/fog_out.pov" \
 grep -q '"height_fog": {' "$dir/fog_out.blender.json" \
   || { echo "FAIL: the Blender export has no height fog"; fail=1; }
 rm -f "$dir"/fog_out.* "$dir/cs.json"
-# The atmosphere: POV-Ray writes it (approximated: --strict refuses), the
-# Blender target refuses it at medium.type and writes nothing.
+# The atmosphere: POV-Ray and Blender write it (approximated: --strict
+# refuses), and the Blender script refuses it for EEVEE with its reason.
 "$tool" "$src/scenes/sky_sunset.json" --to pov -o "$dir/sky_out.pov" 2>"$dir/err"
 check "--to pov writes the atmosphere" 0 $?
-grep -q "Mie's weight" "$dir/err" || { echo "FAIL: atmosphere note: $(cat "$dir/err")"; fail=1; }
+grep -q "cornette_shanks phase" "$dir/err" || { echo "FAIL: atmosphere note: $(cat "$dir/err")"; fail=1; }
 "$tool" "$src/scenes/sky_sunset.json" --to pov --strict -o "$dir/sky2_out.pov" 2>/dev/null
-check "--to pov --strict refuses the atmosphere's mixture" 2 $?
+check "--to pov --strict refuses the atmosphere's Mie phase" 2 $?
 "$tool" "$src/scenes/sky_sunset.json" --to blender -o "$dir/sky_out.py" 2>"$dir/err"
-check "--to blender refuses the atmosphere" 2 $?
-grep -q "sky_sunset.json:[0-9]*:[0-9]*: medium.type: .*'atmosphere'" "$dir/err" \
-  || { echo "FAIL: atmosphere refusal: $(cat "$dir/err")"; fail=1; }
-ls "$dir" | grep -qE '^(sky2_out|sky_out\.py|sky_out\.blender)' \
-  && { echo "FAIL: a refused export wrote an output"; fail=1; }
-rm -f "$dir"/sky_out.*
+check "--to blender writes the atmosphere" 0 $?
+grep -q "cornette_shanks phase" "$dir/err" || { echo "FAIL: atmosphere note: $(cat "$dir/err")"; fail=1; }
+"$tool" "$src/scenes/sky_sunset.json" --to blender --strict -o "$dir/sky2_out.py" 2>/dev/null
+check "--to blender --strict refuses the atmosphere's phases" 2 $?
+blender -b --factory-startup -P "$dir/sky_out.py" -- --engine eevee --out "$dir/sky_eevee.exr" \
+  >"$dir/err" 2>&1
+check "the script refuses the atmosphere for EEVEE" 2 $?
+grep -q "medium.atmosphere: EEVEE does not render" "$dir/err" \
+  || { echo "FAIL: EEVEE refusal: $(tail -3 "$dir/err")"; fail=1; }
+ls "$dir" | grep -qE '^(sky2_out|sky_eevee)' \
+  && { echo "FAIL: a refused export or render wrote an output"; fail=1; }
+rm -f "$dir"/sky_out.* "$dir"/sky_out[0-9]*
 height_fog_scene "$data/point_medium.json" "$dir/fog.json"
 "$tool" "$dir/fog.json" --to json -o "$dir/fog2.json"; check "json keeps height fog" 0 $?
 grep -q '"height_fog"' "$dir/fog2.json" && grep -q '"scale_height": 1' "$dir/fog2.json" \

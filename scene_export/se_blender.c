@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "se_blender_atmo.h"
 #include "se_geom.h"
 #include "se_jsontext.h"
 #include "se_cycles_phase.h"
@@ -75,6 +76,11 @@ static void clipping(const blend *b, const sh_camera_frame *f, double *start,
   double depth = sh_dot(sh_sub(b->center, f->origin), f->forward);
   *start = se_frame_length(&b->frame, fmax(1e-4 * r, depth - 1.1 * r));
   *end = se_frame_length(&b->frame, fmax(100.0 * r, depth + 1.1 * r));
+  /* Under a planet's air the content surrounds the camera: start just
+   * short of the nearest surface, the ground or the top. */
+  const sh_medium *m = &b->scene->medium;
+  if (m->present && m->type == SH_MEDIUM_ATMOSPHERE)
+    *start = fmin(*start, se_frame_length(&b->frame, se_blender_atmo_clip_start(b->scene)));
 }
 
 static json_t *camera(blend *b) {
@@ -565,7 +571,11 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       "world", "background", vec(scene->background), "camera", camera(&b), "lights",
       lights, "materials", materials, "meshes", meshes, "images", images, "cards",
       cards);
-  if (root && scene->medium.present) json_object_set_new(root, "medium", medium(&b));
+  if (root && scene->medium.present && scene->medium.type == SH_MEDIUM_ATMOSPHERE)
+    json_object_set_new(root, "medium",
+                        se_blender_atmosphere(scene, &b.frame, materials, meshes, notes));
+  else if (root && scene->medium.present)
+    json_object_set_new(root, "medium", medium(&b));
   if (root) json_object_set_new(json_object_get(root, "world"), "sun_disks", sun_disks(&b));
   if (root) {
     /* The notes as sentences (a JSON string is data, so the punctuation

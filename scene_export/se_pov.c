@@ -25,6 +25,7 @@ typedef struct pov {
   sh_vec3 center;   /* the bounding sphere, in scene units */
   double radius;
   const char *name; /* the output's base name (plain), for the light maps */
+  int split; /* an atmosphere with Mie scattering: two frames (atmosphere()) */
 } pov;
 
 /* Numbers: 10 significant digits, enough for half-float output. */
@@ -92,9 +93,19 @@ static void header(pov *p, const char *name) {
   se_buf_printf(b, "// POV-Ray 3.7 scene exported by scene_export from %s.\n",
                 file ? file : "the scene");
   free(file);
-  se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
-                name, name);
-  se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel centre.\n");
+  if (p->split) {
+    se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes frames\n"
+                     "// %s1.exr and %s2.exr (Rayleigh's light and the surfaces, then Mie's),\n"
+                     "// whose sum is the image: `oiiotool %s1.exr %s2.exr --add -o %s.exr`.\n"
+                     "// Linear radiance as half-float OpenEXR, one ray through each pixel "
+                     "centre.\n",
+                  name, name, name, name, name, name);
+  } else {
+    se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
+                  name, name);
+    se_buf_puts(b, "// linear radiance as half-float OpenEXR, one ray through each pixel "
+                   "centre.\n");
+  }
   se_buf_puts(b, "// Coordinates: the scene's, moved so that ");
   components(b, p->frame.origin);
   se_buf_puts(b, " is at the origin,\n// with z negated (POV-Ray is left-handed) and ");
@@ -154,10 +165,16 @@ static void globals(pov *p) {
                 "global_settings {\n  assumed_gamma 1.0\n  max_trace_level %d\n"
                 "  adc_bailout 1e-10\n  ambient_light rgb <1, 1, 1>\n}\n\n",
                 trace_levels(p));
+  if (p->split)
+    se_buf_puts(b, "// Frame 2 holds Mie's light only: no background, no sun's disk, and no\n"
+                   "// light reflected by surfaces (SE_Lit 0; mirrors and transmission stay).\n"
+                   "#declare SE_Lit = (frame_number = 2 ? 0 : 1);\n"
+                   "#if (frame_number != 2)\n");
   se_buf_puts(b, "background { ");
   colour(b, s->background);
   se_buf_puts(b, " }\n\n");
   sun_disks(p);
+  if (p->split) se_buf_puts(b, "#end\n\n");
   double aspect = (double)s->camera.width / s->camera.height;
   double hfov = 2.0 * atan(tan(0.5 * s->camera.fov_y_deg * SH_PI / 180.0) * aspect) *
                 180.0 / SH_PI;
@@ -363,11 +380,13 @@ static void material(pov *p, int i) {
   components(b, pig);
   se_buf_puts(b, ", ");
   num(b, T);
+  const char *lit = p->split ? "SE_Lit * " : "";
+  const char *lit_rgb = p->split ? "rgb SE_Lit * " : "rgb ";
   se_buf_puts(b, "> }\n    finish {\n      ambient ");
-  colour(b, sh_scale(p->scene->ambient, SH_PI));
+  vector(b, lit_rgb, sh_scale(p->scene->ambient, SH_PI));
   se_buf_puts(b, "\n      emission ");
-  colour(b, emis);
-  se_buf_puts(b, "\n      diffuse 1 brilliance 1\n");
+  vector(b, lit_rgb, emis);
+  se_buf_printf(b, "\n      diffuse %s1 brilliance 1\n", lit);
   if (!sh_is_black(m->specular)) {
     double s = m->specular.x;
     if (!is_grey(m->specular)) {
@@ -377,7 +396,7 @@ static void material(pov *p, int i) {
               "colour only; the coloured specular is replaced by its grey mean %g.",
               i, name, s);
     }
-    se_buf_puts(b, "      phong ");
+    se_buf_printf(b, "      phong %s", lit);
     num(b, s);
     se_buf_puts(b, " phong_size ");
     num(b, m->shininess);
@@ -548,14 +567,14 @@ static void medium(pov *p) {
  * sphere, one medium per part with its density a function of the distance
  * to the centre. POV-Ray scatters the sum of its media's scattering with
  * the plain mean of their phases k (media.cpp,
- * ComputeMediaScatteringAttenuation), not with the mixture weighted by
- * each part's sigma_s at the point: exact for Rayleigh alone; with Mie the
- * mixture's weights are fixed, chosen by adding media that only carry a
- * phase type (scattering 0) until Mie's share of the mean is nearest to
- * its share of the luminance of the vertical column's scattering, sigma_s
- * times the scale height (noted). */
-#define SE_POV_ATMO_MEDIA 8
-
+ * ComputeMediaScatteringAttenuation: k /= medias.size()), whatever their
+ * densities, so no set of media in one interior scatters with Rayleigh's
+ * and Mie's phases weighted by their sigma_s at each point. Single
+ * scattering is linear in the scattering, though: with Mie (p->split) the
+ * export renders two frames, each with the whole extinction and one
+ * part's scattering, every medium of that frame carrying that part's
+ * phase type (so the mean of the k is that phase exactly): frame 1
+ * Rayleigh's (and the surfaces'), frame 2 Mie's. Their sum is the image. */
 /* r, the distance to the centre in POV-Ray units, as a function text. */
 static void atmo_radius(pov *p, const sh_atmosphere *a) {
   sh_vec3 c = se_frame_point(&p->frame, a->center);
@@ -621,57 +640,28 @@ static void atmo_media(pov *p, const sh_atmosphere *a, const se_phase_pov *pp,
   se_buf_puts(b, "    }\n");
 }
 
-static double luminance(sh_vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
-
 static void atmosphere(pov *p) {
   const sh_atmosphere *a = &p->scene->medium.atmo;
   se_buf *b = p->b;
   sh_phase rayleigh = {SH_PHASE_RAYLEIGH, 0.0};
   se_phase_pov pr = se_phase_to_pov(&rayleigh), pm = se_phase_to_pov(&a->mie_phase);
-  /* Media types: n_m of Mie's and the rest Rayleigh's, the first of each
-   * carrying the part's scattering, the ozone one more Rayleigh. */
-  int n = a->has_mie ? SE_POV_ATMO_MEDIA : 1 + (a->has_ozone ? 1 : 0);
-  int n_m = 0;
-  double w = 0.0;
-  if (a->has_mie) {
-    double lm = luminance(a->mie_sigma_s) * a->mie_H;
-    double lr = luminance(a->rayleigh_sigma_s) * a->rayleigh_H;
-    double share = lm + lr > 0 ? lm / (lm + lr) : 0.5, best = 2.0;
-    for (int k = 1; k < n; k++) {
-      double wk = k * pm.mean / (k * pm.mean + (n - k) * pr.mean);
-      if (fabs(wk - share) < best) {
-        best = fabs(wk - share);
-        n_m = k;
-        w = wk;
-      }
-    }
-    if (!pm.exact)
-      se_note(p->notes,
-              "medium.mie.phase: POV-Ray has no %s phase; it is rendered as one "
-              "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
-              se_phase_name(a->mie_phase.type), pm.g);
+  if (a->has_mie && !pm.exact && p->split)
     se_note(p->notes,
-            "medium: POV-Ray mixes the phases of its media with fixed weights, not "
-            "by each part's sigma_s at the point: Rayleigh and Mie are mixed with "
-            "Mie's weight %.3f everywhere (its share of the luminance of the "
-            "vertical column's scattering, sigma_s H, is %.3f).",
-            w, share);
-  }
-  double S = ((n - n_m) * pr.mean + n_m * pm.mean) / n; /* the mean of the means */
-  double k = 4.0 * SH_PI * S;
-  se_buf_puts(b, "// The atmosphere: the ground, an opaque Lambert sphere.\nsphere {\n  ");
+            "medium.mie.phase: POV-Ray has no %s phase; it is rendered as one "
+            "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
+            se_phase_name(a->mie_phase.type), pm.g);
+  se_buf_puts(b, "// The atmosphere: the ground, an opaque Lambert sphere");
+  se_buf_puts(b, p->split ? " (black in frame 2).\nsphere {\n  " : ".\nsphere {\n  ");
   point(p, a->center);
   se_buf_puts(b, ", ");
   num(b, se_frame_length(&p->frame, a->ground_radius));
   se_buf_puts(b, "\n  pigment { ");
-  colour(b, sh_scale(a->ground_albedo, SH_INV_PI));
+  vector(b, p->split ? "rgb SE_Lit * " : "rgb ", sh_scale(a->ground_albedo, SH_INV_PI));
   se_buf_puts(b, " }\n  finish { ambient 0 diffuse 1 emission 0 }\n}\n\n");
-  se_buf_printf(b, "// The air: %d media in the top sphere (Rayleigh, then Mie, the ozone and\n"
-                   "// media that only set the phase mixture's weights); scattering colours\n"
-                   "// sigma_s / (4 pi S) with `extinction` 4 pi S, S = %.9g the mean of the\n"
-                   "// media's k over the sphere, so that the extinction is exact and the\n"
-                   "// in-scattering is sigma_s times the mixture of the media's phases.\n",
-                n, S);
+  se_buf_puts(b, "// The air: the top sphere's interior, media of one phase type; scattering\n"
+                 "// colours sigma_s / (4 pi S) with `extinction` 4 pi S, S the mean of that\n"
+                 "// type's k over the sphere, so that the extinction is exact and the\n"
+                 "// in-scattering is sigma_s times the phase.\n");
   se_buf_puts(b, "sphere {\n  ");
   point(p, a->center);
   se_buf_puts(b, ", ");
@@ -679,25 +669,37 @@ static void atmosphere(pov *p) {
   se_buf_puts(b, "\n");
   helper_texture(b, "rgbt <1, 1, 1, 1>", 0);
   se_buf_puts(b, "  interior {\n");
-  sh_vec3 zero = sh_v3s(0.0);
-  atmo_media(p, a, &pr, k, se_frame_per_length(&p->frame, sh_scale(a->rayleigh_sigma_s, 1.0 / k)),
-             zero, 1, a->rayleigh_H);
-  int used_r = 1, used_m = 0;
-  if (a->has_mie) {
-    atmo_media(p, a, &pm, k, se_frame_per_length(&p->frame, sh_scale(a->mie_sigma_s, 1.0 / k)),
-               se_frame_per_length(&p->frame, a->mie_sigma_a), 1, a->mie_H);
-    used_m = 1;
+  const sh_vec3 zero = sh_v3s(0.0);
+  const se_frame *f = &p->frame;
+  sh_vec3 mie_t = sh_add(a->mie_sigma_s, a->mie_sigma_a);
+  for (int frame = p->split ? 2 : 1; frame >= 1; frame--) {
+    /* Frame 2: Mie's scattering; frame 1 (or the only one): Rayleigh's.
+     * The other part's extinction is an absorbing medium of the same type. */
+    const se_phase_pov *pp = frame == 2 ? &pm : &pr;
+    double k = 4.0 * SH_PI * pp->mean;
+    if (p->split)
+      se_buf_puts(b, frame == 2 ? "  #if (frame_number = 2) // Mie's light\n"
+                                : "  #else // Rayleigh's light\n");
+    if (frame == 2) {
+      atmo_media(p, a, pp, k, se_frame_per_length(f, sh_scale(a->mie_sigma_s, 1.0 / k)),
+                 se_frame_per_length(f, a->mie_sigma_a), 1, a->mie_H);
+      atmo_media(p, a, pp, k, zero, se_frame_per_length(f, a->rayleigh_sigma_s), 1,
+                 a->rayleigh_H);
+    } else {
+      atmo_media(p, a, pp, k, se_frame_per_length(f, sh_scale(a->rayleigh_sigma_s, 1.0 / k)),
+                 zero, 1, a->rayleigh_H);
+      if (a->has_mie)
+        atmo_media(p, a, pp, k, zero,
+                   se_frame_per_length(f, p->split ? mie_t : a->mie_sigma_a), 1, a->mie_H);
+    }
+    if (a->has_ozone)
+      atmo_media(p, a, pp, k, zero, se_frame_per_length(f, a->ozone_sigma_a), 2, 0.0);
   }
-  if (a->has_ozone) {
-    atmo_media(p, a, &pr, k, zero, se_frame_per_length(&p->frame, a->ozone_sigma_a), 2, 0.0);
-    used_r++;
-  }
-  for (; used_m < n_m; used_m++) atmo_media(p, a, &pm, k, zero, zero, 0, 0.0);
-  for (; used_r < n - n_m; used_r++) atmo_media(p, a, &pr, k, zero, zero, 0, 0.0);
+  if (p->split) se_buf_puts(b, "  #end\n");
   se_buf_puts(b, "  }\n}\n\n");
 }
 
-static void ini(se_buf *b, const char *name, const sh_scene *s) {
+static void ini(se_buf *b, const char *name, const sh_scene *s, int split) {
   se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
   se_buf_printf(b, "%s.ini` in this directory.\n", name);
   se_buf_printf(b, "Input_File_Name=%s.pov\n", name);
@@ -708,6 +710,10 @@ static void ini(se_buf *b, const char *name, const sh_scene *s) {
   se_buf_puts(b, "; One ray through each pixel centre.\n");
   se_buf_puts(b, "Antialias=Off\nJitter=Off\nQuality=9\n");
   se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
+  if (split)
+    se_buf_printf(b, "; The atmosphere in two frames, %s1.exr and %s2.exr: the image is "
+                     "their sum.\nInitial_Frame=1\nFinal_Frame=2\n",
+                  name, name);
 }
 
 /* POV-Ray's frame (se_scale.h), and the content sphere the tolerances
@@ -756,6 +762,9 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   p.notes = notes;
   p.name = name;
   choose_frame(&p);
+  const sh_medium *med = &scene->medium;
+  p.split = med->present && med->type == SH_MEDIUM_ATMOSPHERE && med->atmo.has_mie &&
+            !sh_is_black(med->atmo.mie_sigma_s);
   p.pov_radius = se_frame_length(&p.frame, p.radius);
   out->has_frame = 1;
   out->frame = p.frame;
@@ -807,6 +816,6 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   if (body.data) se_buf_puts(povb, body.data);
   povb->failed |= body.failed;
   se_buf_free(&body);
-  ini(inib, name, scene);
+  ini(inib, name, scene, p.split);
   return SH_OK;
 }

@@ -17,7 +17,7 @@ static sh_status se_medium_supported(const sh_scene *scene, const char *target,
   case SH_MEDIUM_HEIGHT_FOG:
     return SH_OK;
   case SH_MEDIUM_ATMOSPHERE:
-    if (!strcmp(target, "pov")) return SH_OK;
+    if (!strcmp(target, "pov") || !strcmp(target, "blender")) return SH_OK;
     break;
   default:
     break;
@@ -47,8 +47,8 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
   char who[64];
   snprintf(who, sizeof who, "the %s exporter", target->name);
   /* The json target writes the scene as it is; the others write
-   * homogeneous media and height fog, POV-Ray the atmosphere too (issue
-   * 12). */
+   * homogeneous media, height fog and the atmosphere (issue 12; Blender's
+   * script refuses the atmosphere for EEVEE). */
   if (strcmp(target->name, "json") != 0) {
     sh_status st = se_medium_supported(scene, target->name, who, err);
     if (st != SH_OK) return st;

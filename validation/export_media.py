@@ -8,13 +8,15 @@ figures of docs/scene_export.md, "Non-uniform media".
 For each scene (scene_export/testdata, small): the reference (lmm_tracer
 --mode reference), then
 - pov: the POV-Ray export as written (media method 2, jitter 0, 200
-  intervals of one sample), with fewer intervals (50), and with
+  intervals of one sample; an atmosphere with Mie in two frames, summed),
+  with fewer intervals (50), and with
   POV-Ray's own default sampling (`method 3` and its defaults: the
   exporter's method, intervals, samples and jitter lines removed), which
   the semantics notes call biased;
-- cycles: the Cycles export as written (its height-fog step rate) at two
-  seeds (their difference is Cycles' noise), and with steps four times
-  longer (the data's step_rate times 4);
+- cycles: the Cycles export as written (its height-fog or atmosphere step
+  rate) at two seeds (their difference is Cycles' noise), and with steps
+  four times longer (the data's step_rate times 4) and, for an atmosphere,
+  four times shorter;
 - phase: the largest and RMS relative error over cos of the
   Henyey-Greenstein lobe that both targets use for the Cornette-Shanks phase
   (se_phase_cs_mean_cosine), for a few g.
@@ -35,6 +37,7 @@ import time
 from pathlib import Path
 
 from .metrics import compare
+from .renderers import pov_frames
 
 ROOT = Path(__file__).resolve().parent.parent
 TESTDATA = ROOT / "scene_export" / "testdata"
@@ -76,7 +79,7 @@ def pov_image(tools, scene, work, label, edit):
         pov = d / "scene.pov"
         pov.write_text(edit(pov.read_text()))
     seconds = run(["povray", "scene.ini"], cwd=d, env={"HOME": str(d), "PATH": "/usr/bin:/bin"})
-    return d / "scene.exr", seconds
+    return pov_frames(d), seconds
 
 
 def cycles_image(tools, scene, work, label, samples, seed, step_factor):
@@ -85,9 +88,12 @@ def cycles_image(tools, scene, work, label, samples, seed, step_factor):
     run([tools["scene_export"], scene, "--to", "blender", "-o", d / "scene.py"])
     data = d / "scene.blender.json"
     j = json.loads(data.read_text())
-    fog = j.get("medium", {}).get("height_fog")
-    if fog and step_factor != 1:
-        fog["step_rate"] *= step_factor
+    medium = j.get("medium", {})
+    marched = medium.get("height_fog") or medium.get("atmosphere")
+    if marched and step_factor != 1:
+        marched["step_rate"] *= step_factor
+        # The longest ray's steps (Blender holds at most 65536).
+        marched["max_steps"] = min(65536, int(marched["max_steps"] / min(step_factor, 1.0)) + 1)
         data.write_text(json.dumps(j))
     seconds = run(["blender", "-b", "-P", d / "scene.py", "--", "--engine", "cycles",
                    "--out", d / "out.exr", "--samples", samples, "--seed", seed])
@@ -168,7 +174,10 @@ def main(argv=None):
                     img, seconds = pov_image(tools, scene, work, label, edit)
                     row("POV-Ray, " + label, img, seconds)
             if "cycles" in parts:
-                for label, factor in (("export's step rate", 1), ("steps 4x longer", 4)):
+                steps = [("export's step rate", 1), ("steps 4x longer", 4)]
+                if json.loads(scene.read_text()).get("medium", {}).get("type") == "atmosphere":
+                    steps.append(("steps 4x shorter", 0.25))
+                for label, factor in steps:
                     img, seconds = cycles_image(tools, scene, work, label, args.samples, 1, factor)
                     row("Cycles %d spp, %s" % (args.samples, label), img, seconds)
                     if factor == 1:

@@ -393,6 +393,21 @@ def _time_sum(text, pattern):
     return sum(found) if found else None
 
 
+def pov_frames(work, name="scene", log=None):
+    """The image POV-Ray's render of NAME.ini in `work` stands for: NAME.exr,
+    or, for an atmosphere with Mie scattering (scene_export renders it in
+    two frames, docs/scene_export.md), the sum of NAME1.exr and NAME2.exr
+    written to NAME.exr by oiiotool (OpenImageIO's, float sum of the
+    half-float frames). None if POV-Ray wrote neither."""
+    work = Path(work)
+    image = work / (name + ".exr")
+    frames = [work / ("%s%d.exr" % (name, k)) for k in (1, 2)]
+    if all(f.exists() for f in frames):
+        command(["oiiotool", frames[0], frames[1], "--add", "-d", "float", "-o", image],
+                cwd=work, log=log)
+    return image if image.exists() else None
+
+
 class PovRay(Adapter):
     name = "povray"
     label = "POV-Ray"
@@ -464,9 +479,9 @@ class PovRay(Adapter):
         wall, out = command(["povray", "scene.ini"], cwd=work, env=env,
                             timeout=ctx.timeout, log=log)
         tool = _time_sum(out, r"(?:Parse|Bounding|Photon|Radiosity|Trace) Time:.*?\(([\d.]+) seconds\)")
-        image = work / "scene.exr"
-        if not image.exists():
-            raise RunFailed("povray wrote no scene.exr")
+        image = pov_frames(work, "scene", log)
+        if image is None:
+            raise RunFailed("povray wrote no scene.exr (nor scene1.exr and scene2.exr)")
         return {"image": image, "wall_seconds": wall, "tool_seconds": tool}
 
 

@@ -517,6 +517,158 @@ def volume_material(item, engine):
     return mat
 
 
+def atmosphere_setup(item):
+    """The medium's "atmosphere" data (scene_export/se_blender_atmo.h)
+    checked, or None for a medium in a box."""
+    a = item.get("atmosphere")
+    if a is None:
+        return None
+    what = "medium.atmosphere"
+    if not isinstance(a, dict):
+        raise DataError(what + ": expected an object")
+    out = {"center": tuple(numbers(a.get("center"), 3, what + ".center"))}
+    for k in ("ground_radius", "top_radius", "step_rate", "max_steps"):
+        out[k] = numbers([a.get(k)], 1, what + "." + k)[0]
+    if not (0 < out["ground_radius"] < out["top_radius"] and out["step_rate"] > 0
+            and out["max_steps"] >= 1):
+        raise DataError(what + ": expected 0 < ground_radius < top_radius, and step_rate "
+                        "and max_steps above 0")
+    out["max_steps"] = int(out["max_steps"])
+    lists = {}
+    for k in ("profiles", "parts", "scatter", "absorption"):
+        v = a.get(k)
+        if not isinstance(v, list) or not all(isinstance(e, dict) for e in v):
+            raise DataError("%s.%s: expected a list of objects" % (what, k))
+        lists[k] = v
+    out["profiles"] = []
+    for i, p in enumerate(lists["profiles"]):
+        w = "%s.profiles[%d]" % (what, i)
+        if "scale_height" in p:
+            h = numbers([p["scale_height"]], 1, w + ".scale_height")[0]
+            if not h > 0:
+                raise DataError(w + ".scale_height: expected a length above 0")
+            out["profiles"].append({"scale_height": h})
+        else:
+            c = numbers([p.get("center_height")], 1, w + ".center_height")[0]
+            hw = numbers([p.get("half_width")], 1, w + ".half_width")[0]
+            if not hw > 0:
+                raise DataError(w + ".half_width: expected a length above 0")
+            out["profiles"].append({"center_height": c, "half_width": hw})
+
+    def index(value, n, w):
+        if isinstance(value, bool) or not isinstance(value, int) or not -1 <= value < n:
+            raise DataError(w + ": expected an index")
+        return value
+
+    np_ = len(out["profiles"])
+    out["parts"] = [{"profile": index(p.get("profile"), np_, "%s.parts[%d].profile" % (what, i)),
+                     "luminance": numbers([p.get("luminance")], 1,
+                                          "%s.parts[%d].luminance" % (what, i))[0]}
+                    for i, p in enumerate(lists["parts"])]
+    out["scatter"] = []
+    for i, s in enumerate(lists["scatter"]):
+        w = "%s.scatter[%d]" % (what, i)
+        out["scatter"].append({
+            "part": index(s.get("part"), len(out["parts"]), w + ".part"),
+            "from": numbers([s.get("from")], 1, w + ".from")[0],
+            "to": numbers([s.get("to")], 1, w + ".to")[0],
+            "anisotropy": numbers([s.get("anisotropy")], 1, w + ".anisotropy")[0],
+            "color": rgb(s.get("color"), w + ".color"),
+            "density": numbers([s.get("density")], 1, w + ".density")[0]})
+    out["absorption"] = []
+    for i, s in enumerate(lists["absorption"]):
+        w = "%s.absorption[%d]" % (what, i)
+        out["absorption"].append({
+            "profile": index(s.get("profile"), np_, w + ".profile"),
+            "part": index(s.get("part"), len(out["parts"]), w + ".part"),
+            "color": rgb(s.get("color"), w + ".color"),
+            "density": numbers([s.get("density")], 1, w + ".density")[0]})
+    c = a.get("container")
+    if not isinstance(c, dict):
+        raise DataError(what + ".container: expected a mesh object")
+    out["container"] = c
+    return out
+
+
+def atmosphere_material(atmo):
+    """The air as a Cycles volume (scene_export/se_blender_atmo.h): the
+    densities are node graphs of the distance r to the centre (exp(-h / H)
+    at most 1, or the ozone's tent, h = r - R_g, times r < R_t); at each
+    shading point one scattering lobe is chosen by White Noise of the
+    position, u in [0, 1): part X owns an interval of length q_X = l_X
+    rho_X / L (L = sum of l_Y rho_Y), its lobes the slices [from, to) of
+    it, and the chosen lobe has density `density` L; Volume Absorption
+    closures (colour 1 - a / D, so some channels' coefficients are
+    negative) keep the extinction exact whichever lobe is chosen."""
+    mat, tree, out = new_material("air")
+    set_if(mat.cycles, "homogeneous_volume", False)
+    set_if(mat.cycles, "volume_sampling", "MULTIPLE_IMPORTANCE")
+    set_if(mat.cycles, "volume_interpolation", "LINEAR")
+    # Blender holds the material's rate at >= 1e-3; the scene's rate
+    # (setup_render) takes the rest.
+    set_if(mat.cycles, "volume_step_rate", max(atmo["step_rate"], 1e-3))
+    pos = tree.nodes.new("ShaderNodeNewGeometry").outputs["Position"]
+    r = vmath(tree, "DISTANCE", pos, atmo["center"])
+    h = smath(tree, "SUBTRACT", r, atmo["ground_radius"])
+    inside = smath(tree, "LESS_THAN", r, atmo["top_radius"])
+    rho = []
+    for p in atmo["profiles"]:
+        if "scale_height" in p:
+            e = smath(tree, "EXPONENT", smath(tree, "MULTIPLY", h, -1.0 / p["scale_height"]))
+            d = smath(tree, "MINIMUM", e, 1.0)
+        else:
+            off = smath(tree, "ABSOLUTE", smath(tree, "SUBTRACT", h, p["center_height"]))
+            d = smath(tree, "MAXIMUM", smath(tree, "SUBTRACT", 1.0, smath(
+                tree, "DIVIDE", off, p["half_width"])), 0.0)
+        rho.append(smath(tree, "MULTIPLY", d, inside))
+    noise = tree.nodes.new("ShaderNodeTexWhiteNoise")
+    noise.noise_dimensions = "3D"
+    tree.links.new(pos, noise.inputs["Vector"])
+    u = noise.outputs["Value"]
+    total = None
+    shares = []
+    for p in atmo["parts"]:
+        s = smath(tree, "MULTIPLY", rho[p["profile"]], p["luminance"])
+        shares.append(s)
+        total = s if total is None else smath(tree, "ADD", total, s)
+    # Each part's interval [start, start + q) of u; the last one's end is
+    # 2, so that rounding leaves no gap below 1.
+    starts, lengths, start = [], [], 0.0
+    for k, s in enumerate(shares):
+        q = smath(tree, "DIVIDE", s, total)
+        starts.append(start)
+        lengths.append(q)
+        start = smath(tree, "ADD", start, q)
+    last = len(shares) - 1
+
+    def chosen(part, a, b):
+        """1 where start + a q <= u < start + b q for the part, else 0."""
+        lo = smath(tree, "ADD", starts[part], smath(tree, "MULTIPLY", lengths[part], a))
+        hi = (2.0 if part == last and b >= 1.0 else
+              smath(tree, "ADD", starts[part], smath(tree, "MULTIPLY", lengths[part], b)))
+        below_hi = 1.0 if hi == 2.0 else smath(tree, "LESS_THAN", u, hi)
+        return smath(tree, "SUBTRACT", below_hi, smath(tree, "LESS_THAN", u, lo))
+
+    parts = []
+    for s in atmo["scatter"]:
+        n = node(tree, "ShaderNodeVolumeScatter", Color=s["color"], Anisotropy=s["anisotropy"])
+        d = smath(tree, "MULTIPLY", smath(tree, "MULTIPLY", total, s["density"]),
+                  chosen(s["part"], s["from"], s["to"]))
+        tree.links.new(d, n.inputs["Density"])
+        parts.append(n.outputs[0])
+    for s in atmo["absorption"]:
+        n = node(tree, "ShaderNodeVolumeAbsorption", Color=s["color"])
+        d = smath(tree, "MULTIPLY", rho[s["profile"]], s["density"])
+        if s["part"] >= 0:
+            d = smath(tree, "MULTIPLY", d, chosen(s["part"], 0.0, 1.0))
+        tree.links.new(d, n.inputs["Density"])
+        parts.append(n.outputs[0])
+    volume = add_all(tree, parts)
+    if volume is not None:
+        tree.links.new(volume, out.inputs["Volume"])
+    return mat
+
+
 def box_mesh(lo, hi):
     v = [(lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
           lo[2] if i & 4 == 0 else hi[2]) for i in range(8)]
@@ -564,6 +716,11 @@ def setup_render(scene, data, opts, medium_box):
         fog = fog_setup(data["medium"]) if "medium" in data else None
         if fog is not None:
             c.volume_max_steps = max(int(c.volume_max_steps), fog["max_steps"])
+        atmo = atmosphere_setup(data["medium"]) if "medium" in data else None
+        if atmo is not None:
+            c.volume_max_steps = max(int(c.volume_max_steps), atmo["max_steps"])
+            # What the material's rate (at least 1e-3) leaves to the scene's.
+            c.volume_step_rate = min(1.0, max(0.01, atmo["step_rate"] / 1e-3))
         c.transparent_max_bounces = 64
         c.caustics_reflective = False
         c.caustics_refractive = False
@@ -656,6 +813,12 @@ def build_into(scene, collection, data, base_dir, engine):
     `engine` ("cycles" or "eevee"); returns the medium's box (lo, hi) or
     None. Raises DataError for data the exporter does not write."""
     check_format(data)
+    atmo = atmosphere_setup(data["medium"]) if isinstance(data.get("medium"), dict) else None
+    if atmo is not None and engine == "eevee":
+        raise DataError("medium.atmosphere: EEVEE does not render a planet's atmosphere "
+                        "(its froxel grid spans the view frustum, far too coarse for air "
+                        "kilometres thick seen from a metre above the ground, and it has no "
+                        "per-point phase mixture); render it with --engine cycles")
 
     # World: the background radiance, seen by camera, mirror and refracted
     # rays but lighting nothing (diffuse and volume rays see black), never
@@ -779,8 +942,12 @@ def build_into(scene, collection, data, base_dir, engine):
         item = data["medium"]
         lo = numbers(item.get("min"), 3, "medium.min")
         hi = numbers(item.get("max"), 3, "medium.max")
-        mesh = box_mesh(lo, hi)
-        mesh.materials.append(volume_material(item, engine))
+        if atmo is not None:
+            mesh = build_mesh("air", atmo["container"], "medium.atmosphere.container")
+            mesh.materials.append(atmosphere_material(atmo))
+        else:
+            mesh = box_mesh(lo, hi)
+            mesh.materials.append(volume_material(item, engine))
         new_object("medium", mesh, collection)
         medium_box = (lo, hi)
     return medium_box
