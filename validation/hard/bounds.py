@@ -71,7 +71,13 @@ INVARIANCE_BOUNDS = {
     # (se_pov.c): the same .pov but for the header, the same image.
     "povray": {"scale": 1e-3, "position": 1e-3, "distance": 0.015, "pixel": 1e-3,
                "plane": None},
-    "cycles": {"scale": None, "position": None, "distance": None, "pixel": None,
+    # The Blender export scales and moves the scene into the range Cycles'
+    # single precision holds (scene_export/se_scale.h): the same data but
+    # for rounding, the same random numbers, the same image (< 0.01% in
+    # validation/precision.py and here). camera_5000 against camera_500:
+    # the same pixels' samples through a flatter perspective (0.47% at
+    # 64 spp, 48x36); the 1x1 pixel draws other samples: not bounded.
+    "cycles": {"scale": 1e-3, "position": 1e-3, "distance": 0.015, "pixel": None,
                "plane": None},
     "eevee": {"scale": None, "position": None, "distance": None, "pixel": None,
               "plane": None},
