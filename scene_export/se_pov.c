@@ -110,9 +110,11 @@ static void header(pov *p, const char *name) {
   components(b, p->frame.origin);
   se_buf_puts(b, " is at the origin,\n// with z negated (POV-Ray is left-handed) and ");
   se_buf_printf(b, "lengths multiplied by %g\n// (coefficients per unit length divided by it, "
-                   "intensities multiplied by its\n// square), so POV-Ray's fixed tolerances of "
-                   "1e-3 units are negligible.\n",
-                p->scale);
+                   "intensities multiplied by its\n// square): the frame scene_export %s, "
+                   "where POV-Ray's fixed tolerances\n// of 1e-3 units are negligible%s.\n",
+                p->scale,
+                p->opt->scale_mode == SE_SCALE_AUTO ? "chose (--scale auto)" : "was given",
+                p->opt->scale_mode == SE_SCALE_AUTO ? "" : " unless a note below says otherwise");
   se_notes_comment(p->notes, b, "// ");
   se_buf_puts(b, "\n#version 3.7;\n\n");
 }
