@@ -127,6 +127,7 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
   confined_fs *fs = (confined_fs *)(void *)io->UserData;
   if (!name || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
     return NULL;
+  if (fs->overread) return NULL; /* the load is refused: no more work */
   char *resolved = NULL;
   int inside = sh__confined(name, fs->root, &resolved);
   if (inside == 0) {
