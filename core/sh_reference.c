@@ -38,18 +38,19 @@ typedef struct worker {
 
 static sh_vec3 trace(worker *w, sh_vec3 o, sh_vec3 d, int depth, sh_rng *rng);
 
-/* Light arriving at surface point p (normal n facing the viewer) from every
- * light, shaded with Lambert and Phong terms. */
-static sh_vec3 direct_light(worker *w, const sh_material *mat, sh_vec3 p,
-                            sh_vec3 n, sh_vec3 d, int shape) {
+/* Light arriving at the hit's point p (normal n facing the viewer) from
+ * every light, shaded with Lambert and Phong terms. */
+static sh_vec3 direct_light(worker *w, const sh_material *mat, const sh_hit *h,
+                            sh_vec3 n, sh_vec3 d) {
+  sh_vec3 p = h->p;
   const sh_scene *scene = w->job->scene;
   sh_vec3 sum = sh_v3s(0.0);
   int has_spec = !sh_is_black(mat->specular);
   if (sh_is_black(mat->diffuse) && !has_spec) return sum;
-  sh_vec3 origin = sh_rt_offset(w->job->rt, p, n);
+  sh_vec3 origin = sh_rt_offset_hit(w->job->rt, h, n);
   const sh_shadow_hook *hook = w->job->opt->hook;
   int hooked = hook && hook->surface &&
-               hook->surface(hook->user, w->index, p, n, shape, w->vis,
+               hook->surface(hook->user, w->index, h, n, w->vis,
                              &w->counters);
   for (int i = 0; i < scene->nlights; i++) {
     const sh_light *l = &scene->lights[i];
@@ -84,12 +85,12 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
   int entering = sh_dot(h->ng, d) < 0;
   sh_vec3 n = entering ? h->ng : sh_neg(h->ng);
   sh_vec3 L = sh_add(mat->emission, sh_mul(scene->ambient, mat->diffuse));
-  L = sh_add(L, direct_light(w, mat, h->p, n, d, h->shape));
+  L = sh_add(L, direct_light(w, mat, h, n, d));
   const sh_reference_options *opt = w->job->opt;
   if (depth >= opt->max_depth) return L;
   sh_vec3 reflected = sh_reflect(d, n);
   if (!opt->local && !sh_is_black(mat->reflect))
-    L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset(w->job->rt, h->p, n),
+    L = sh_add(L, sh_mul(mat->reflect, trace(w, sh_rt_offset_hit(w->job->rt, h, n),
                                              reflected, depth + 1, rng)));
   if (!sh_is_black(mat->transmit)) {
     /* Snell's law; the inside of a closed shape has index `ior`. Total
@@ -103,10 +104,10 @@ static sh_vec3 shade(worker *w, const sh_hit *h, sh_vec3 d, int depth,
     sh_vec3 dir, org;
     if (k < 0) {
       dir = reflected;
-      org = sh_rt_offset(w->job->rt, h->p, n);
+      org = sh_rt_offset_hit(w->job->rt, h, n);
     } else {
       dir = sh_normalize(sh_madd(sh_scale(d, eta), n, eta * ci - sqrt(k)));
-      org = sh_rt_offset(w->job->rt, h->p, sh_neg(n));
+      org = sh_rt_offset_hit(w->job->rt, h, sh_neg(n));
     }
     if (eta == 1.0) dir = d; /* straight on, exactly */
     L = sh_add(L, sh_mul(mat->transmit, trace(w, org, dir, depth + 1, rng)));
@@ -125,7 +126,8 @@ static sh_vec3 shade_ground(worker *w, sh_vec3 p) {
   sh_vec3 albedo = m->atmo.ground_albedo;
   sh_vec3 n = sh_normalize(sh_sub(p, m->atmo.center));
   sh_vec3 L = sh_mul(scene->ambient, albedo);
-  sh_vec3 origin = sh_rt_offset(w->job->rt, p, n);
+  /* Not an Embree surface: only the point's rounding counts. */
+  sh_vec3 origin = sh_rt_offset_by(w->job->rt, p, n, 0.0);
   for (int i = 0; i < scene->nlights; i++) {
     sh_vec3 wi;
     double dist;

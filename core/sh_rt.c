@@ -23,24 +23,53 @@ typedef struct sh__prim {
   double length;
   unsigned mask; /* the shape's SH_RT_* class bit */
   int identity;  /* the shape has no transform: skip the matrices */
+  double diam;   /* analytic: the world bounds' diagonal; triangles: the
+                  * largest triangle's longest edge, in frame units */
 } sh__prim;
 
 /* Embree holds single-precision floats, whose ulp grows with the distance
- * from the origin, and the ray offsets' constants are meant for
- * coordinates of order 1: a scene far from the origin, or a very small or
- * very large one, loses its detail. So Embree sees the scene in a frame of
- * its own, q = (p - origin) / unit, fitted to the shapes' bounds by
- * sh_frame_fit, so that every shape lies within BALL units of the
- * origin. A ray from further than FAR_UNITS units away starts at the
- * closest point of that ball it can reach (in double precision), so that
- * a far camera's rays keep their precision. */
+ * from the origin: a scene far from the origin, or a very small or very
+ * large one, loses its detail, and a planet-sized one loses everything
+ * near an eye a metre above its ground. So Embree sees the scene in a
+ * frame of its own, q = (p - origin) / unit, moved into in double
+ * precision: unit is sh_frame_fit's (a power of two at or above half the
+ * shapes' bounds' diagonal) and origin sh_frame_fit's too (a multiple of
+ * the unit), unless the camera is within 2^-8 units of a shape's bounds:
+ * then that bounds' point nearest the camera, to 2^-22 units, so that the float
+ * coordinates' ulps are smallest where the image looks closest (an eye a
+ * metre above a planet's ground: ulps of 0.5 m in a frame about the
+ * planet's centre, under 1e-6 m within metres of the eye: the quantum
+ * is 4 m there). Every shape lies within BALL
+ * units of the origin either way (the
+ * bounds' diagonal is at most 2 units). A ray from further than FAR_UNITS
+ * units away starts at the closest point of that ball it can reach (in
+ * double precision), so that a far camera's rays keep their precision.
+ *
+ * What Embree computes in float is mended in double where it matters: a
+ * closest hit's distance, point and normal are recomputed from the hit
+ * primitive in double (the triangle's plane from its float vertices,
+ * which are the surface; the analytic shape's root from the double ray),
+ * and each hit carries the bound `err` on how far from the surface a
+ * point may lie and still be put on the wrong side by Embree's float
+ * tests (sh_hit), from which sh_rt_offset_hit and sh_rt_free_end step
+ * off. */
 #define BALL 2.0
 enum { FAR_UNITS = 4 };
+/* float_err's factors: ulps of a point's largest coordinate, and of a
+ * triangle's extent about the point. */
+#define ERR_POINT 1.0
+#define ERR_TRIANGLE 8.0
+/* The frame origin's quantum, in units: a frame coordinate below 2 units
+ * made of multiples of it has at most 24 significant bits, a float's. */
+#define ORIGIN_QUANTUM 0x1p-22
+/* How close to a shape the eye must be for the frame to move to it. */
+#define NEAR_UNITS 0x1p-8
 
 struct sh_rt {
   RTCDevice device;
   sh_vec3 origin; /* the frame's origin, world space */
   double unit;    /* the frame's unit length, world space */
+  double tri_diam; /* the largest triangle's longest edge, frame units */
   RTCScene scene_all; /* every shape, with its class as geometry mask */
   const sh_scene *scene;
   sh__prim *prims;
@@ -224,6 +253,9 @@ static sh_status prim_init(sh_rt *rt, sh__prim *pr, const sh_shape *s,
   pr->identity = memcmp(&s->xform, &id, sizeof id) == 0;
   if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER) {
     pr->analytic = 1;
+    sh_vec3 lo, hi;
+    sh_shape_bounds(s, &lo, &hi);
+    pr->diam = sh_length(sh_sub(hi, lo));
     if (s->type == SH_SHAPE_CYLINDER) {
       sh_vec3 a = sh_sub(s->top, s->base);
       pr->length = sh_length(a);
@@ -250,6 +282,16 @@ static sh_status prim_init(sh_rt *rt, sh__prim *pr, const sh_shape *s,
     p[1] = (float)w.y;
     p[2] = (float)w.z;
   }
+  for (int t = 0; t < m.ntris; t++) {
+    const unsigned *ix = pr->indices + 3 * t;
+    for (int k = 0; k < 3; k++) {
+      const float *a = pr->verts + 3 * ix[k], *b = pr->verts + 3 * ix[(k + 1) % 3];
+      sh_vec3 e = sh_v3((double)a[0] - b[0], (double)a[1] - b[1],
+                        (double)a[2] - b[2]);
+      pr->diam = fmax(pr->diam, sh_length(e));
+    }
+  }
+  if (pr->diam > rt->tri_diam) rt->tri_diam = pr->diam;
   return SH_OK;
 }
 
@@ -306,6 +348,33 @@ static void frame_init(sh_rt *rt, const sh_scene *scene) {
     hi = sh_vmax(hi, b);
   }
   sh_frame_fit(lo, hi, &rt->origin, &rt->unit);
+  /* The camera's distance to the nearest shape's bounds. */
+  sh_vec3 c = scene->camera.position, near = c;
+  double dmin = INFINITY;
+  for (int i = 0; i < scene->nshapes; i++) {
+    sh_vec3 a, b;
+    sh_shape_bounds(&scene->shapes[i], &a, &b);
+    sh_vec3 x = sh_vmin(sh_vmax(c, a), b);
+    double dx = sh_length(sh_sub(c, x));
+    if (dx < dmin) {
+      dmin = dx;
+      near = x;
+    }
+  }
+  /* An eye closer to a shape than NEAR_UNITS (a metre above a planet's
+   * ground): the origin moves to that shape's bounds' point nearest the
+   * eye, quantised to ORIGIN_QUANTUM units, so that a coordinate that is a
+   * multiple of it (a floor at y = 0) moves into the frame exactly: what
+   * lies on a plane there stays on it. Elsewhere the frame stays
+   * sh_frame_fit's, in which the lmm mode's light mesh is the same at any
+   * scale to 1e-6 (lmm_extremes_test; about the eye it moved by 0.1% at
+   * scale 1e-9, its grid points' visibility being sensitive to rounding). */
+  if (!(dmin <= rt->unit * NEAR_UNITS)) return;
+  sh_vec3 q = sh_sub(near, rt->origin);
+  double step = rt->unit * ORIGIN_QUANTUM;
+  rt->origin = sh_add(rt->origin, sh_v3(step * round(q.x / step),
+                                        step * round(q.y / step),
+                                        step * round(q.z / step)));
 }
 
 sh_status sh_rt_create(const sh_scene *scene, sh_rt **out, sh_error *err) {
@@ -412,6 +481,85 @@ static sh_vec3 from_frame(const sh_rt *rt, const float *q) {
   return sh_madd(rt->origin, sh_v3(q[0], q[1], q[2]), rt->unit);
 }
 
+/* The largest coordinate's size of world point p in the frame. */
+static double frame_size(const sh_rt *rt, sh_vec3 p) {
+  sh_vec3 q = sh_scale(sh_sub(p, rt->origin), 1.0 / rt->unit);
+  return fmax(fabs(q.x), fmax(fabs(q.y), fabs(q.z)));
+}
+
+/* A bound, in world length, on how far a point near p may be moved across
+ * a surface by Embree's float arithmetic, for a surface whose relevant
+ * extent about p (its triangle's vertices' distances, frame units) is
+ * `extent`: the point's own rounding into the frame (half an ulp a
+ * coordinate: at most 0.87 FLT_EPSILON of its largest) and the rounding
+ * of the surface's float vertices relative to a ray origin at the point,
+ * with the plane's normal computed from them (a few ulps of their
+ * distance; Embree's Pluecker test). The factors are margins on those
+ * counts, checked by core/sh_rt_test.c's fans of rays at closed boxes and
+ * core/sh_reference_planet_test.c. */
+static double float_err(const sh_rt *rt, sh_vec3 p, double extent) {
+  return (ERR_POINT * frame_size(rt, p) + ERR_TRIANGLE * extent) * FLT_EPSILON *
+         rt->unit;
+}
+
+/* The closest hit on an analytic shape, in double precision: the root of
+ * the double-precision ray (Embree's was found from the ray's float
+ * origin, its distance rounded to float), its point projected onto the
+ * exact sphere. `ng` is Embree's float normal, kept if the double ray
+ * misses (a tangent ray). */
+static void refine_analytic(const sh__prim *pr, sh_vec3 o,
+                            sh_vec3 d, double tmin, double tmax, sh_vec3 ng,
+                            sh_hit *hit) {
+  const sh_shape *s = pr->shape;
+  sh_vec3 lo = o, ld = d, n;
+  if (!pr->identity) {
+    lo = sh_xform_point(&s->inv, o);
+    ld = sh_xform_vector(&s->inv, d);
+  }
+  double t;
+  if (analytic_hit(pr, lo, ld, tmin, tmax, &t, &n)) {
+    hit->t = t;
+    ng = pr->identity ? n : sh_xform_normal(&s->inv, n);
+  }
+  hit->p = sh_madd(o, d, hit->t);
+  hit->ng = sh_normalize(ng);
+  if (s->type == SH_SHAPE_SPHERE) {
+    /* Project the point back onto the exact sphere. */
+    sh_vec3 lp = sh_sub(sh_xform_point(&s->inv, hit->p), s->center);
+    lp = sh_scale(sh_normalize(lp), s->radius);
+    hit->p = sh_xform_point(&s->xform, sh_add(lp, s->center));
+  }
+  /* The double-precision test sees the float origin exactly: only its
+   * rounding counts (added where a point leaves: sh_rt_offset_by), and the
+   * quadratic's cancellation, a few double ulps of the shape's size. */
+  hit->err = 64 * DBL_EPSILON * pr->diam;
+}
+
+/* The closest hit on triangle `prim`, in double precision: the ray's
+ * crossing of the plane of the triangle's float vertices (exact in the
+ * world as doubles), rather than Embree's float distance, which may lie
+ * on either side of the surface by its float error. */
+static void refine_triangle(const sh_rt *rt, const sh__prim *pr, unsigned prim,
+                            sh_vec3 o, sh_vec3 d, sh_hit *hit) {
+  const unsigned *ix = pr->indices + 3 * prim;
+  sh_vec3 v[3];
+  for (int k = 0; k < 3; k++) v[k] = from_frame(rt, pr->verts + 3 * ix[k]);
+  hit->ng = sh_normalize(sh_cross(sh_sub(v[1], v[0]), sh_sub(v[2], v[0])));
+  double dn = sh_dot(d, hit->ng);
+  if (dn != 0) {
+    /* The plane through the vertices' centroid, for the smallest
+     * cancellation. */
+    sh_vec3 c = sh_scale(sh_add(sh_add(v[0], v[1]), v[2]), 1.0 / 3.0);
+    double t = sh_dot(sh_sub(c, o), hit->ng) / dn;
+    if (isfinite(t)) hit->t = t;
+  }
+  hit->p = sh_madd(o, d, hit->t);
+  double extent = 0;
+  for (int k = 0; k < 3; k++)
+    extent = fmax(extent, sh_length(sh_sub(v[k], hit->p)));
+  hit->err = ERR_TRIANGLE * FLT_EPSILON * extent;
+}
+
 static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
                    double tmin, double tmax, sh_hit *hit) {
   struct RTCIntersectContext ctx;
@@ -428,27 +576,11 @@ static int closest(const sh_rt *rt, unsigned mask, sh_vec3 o, sh_vec3 d,
   const sh__prim *pr = &rt->prims[rh.hit.geomID];
   hit->shape = (int)rh.hit.geomID;
   hit->t = skip + rh.ray.tfar * rt->unit;
-  if (pr->analytic) {
-    hit->p = sh_madd(o, d, hit->t);
-    hit->ng = sh_normalize(sh_v3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    if (pr->shape->type == SH_SHAPE_SPHERE) {
-      /* Project the point back onto the exact sphere. */
-      const sh_shape *s = pr->shape;
-      sh_vec3 lp = sh_sub(sh_xform_point(&s->inv, hit->p), s->center);
-      lp = sh_scale(sh_normalize(lp), s->radius);
-      hit->p = sh_xform_point(&s->xform, sh_add(lp, s->center));
-    }
-  } else {
-    const unsigned *ix = pr->indices + 3 * rh.hit.primID;
-    const float *a = pr->verts + 3 * ix[0], *b = pr->verts + 3 * ix[1],
-                *c = pr->verts + 3 * ix[2];
-    sh_vec3 va = from_frame(rt, a), vb = from_frame(rt, b),
-            vc = from_frame(rt, c);
-    double u = rh.hit.u, v = rh.hit.v;
-    hit->p = sh_add(sh_add(sh_scale(va, 1.0 - u - v), sh_scale(vb, u)),
-                    sh_scale(vc, v));
-    hit->ng = sh_normalize(sh_cross(sh_sub(vb, va), sh_sub(vc, va)));
-  }
+  if (pr->analytic)
+    refine_analytic(pr, o, d, tmin, tmax,
+                    sh_v3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z), hit);
+  else
+    refine_triangle(rt, pr, rh.hit.primID, o, d, hit);
   return 1;
 }
 
@@ -487,7 +619,10 @@ sh_vec3 sh_rt_visibility_of(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
     vis = sh_mul(vis, rt->scene->materials[rt->scene->shapes[h.shape].material]
                           .transmit);
     if (sh_max3(vis) <= 0) break;
-    t = h.t + fmax(1e-5 * h.t, 1e-6 * rt->unit);
+    /* Past the crossing by its float bound along the ray, or by a
+     * relative 1e-5 of the distance, where coincident primitives lie. */
+    double dn = fmax(fabs(sh_dot(d, h.ng)), 1e-3);
+    t = h.t + fmax(1e-5 * h.t, 2 * (h.err + float_err(rt, h.p, 0.0)) / dn);
   }
   return vis;
 }
@@ -559,37 +694,28 @@ void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
   if (c) c->occlusion += (uint64_t)n;
 }
 
-static float offset_float(float p, float n) {
-  const float origin = 1.0f / 32.0f, float_scale = 1.0f / 65536.0f;
-  const float int_scale = 256.0f;
-  int32_t of = (int32_t)(int_scale * n);
-  int32_t bits;
-  memcpy(&bits, &p, sizeof bits);
-  bits += (p < 0) ? -of : of;
-  float pi;
-  memcpy(&pi, &bits, sizeof pi);
-  return fabsf(p) < origin ? p + float_scale * n : pi;
+sh_vec3 sh_rt_offset_by(const sh_rt *rt, sh_vec3 p, sh_vec3 n, double err) {
+  /* The point's own rounding at the new place, and the surface's bound. */
+  double e = err + float_err(rt, p, 0.0);
+  return sh_madd(p, n, e + float_err(rt, sh_madd(p, n, e), 0.0));
 }
 
 sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n) {
-  /* In the frame Embree sees, where the method's constants are meant:
-   * coordinates of order 1. */
-  sh_vec3 q = sh_scale(sh_sub(p, rt->origin), 1.0 / rt->unit);
-  float f[3] = {offset_float((float)q.x, (float)n.x),
-                offset_float((float)q.y, (float)n.y),
-                offset_float((float)q.z, (float)n.z)};
-  return from_frame(rt, f);
+  return sh_rt_offset_by(rt, p, n, float_err(rt, p, rt->tri_diam));
+}
+
+sh_vec3 sh_rt_offset_hit(const sh_rt *rt, const sh_hit *hit, sh_vec3 n) {
+  return sh_rt_offset_by(rt, hit->p, n, hit->err);
 }
 
 double sh_rt_free_end(const sh_rt *rt, sh_vec3 o, sh_vec3 d, const sh_hit *hit) {
   double dn = sh_dot(d, hit->ng);
   if (dn == 0) return hit->t;
-  /* The normal facing the ray's origin, and the offset's distance along
-   * it. */
-  sh_vec3 n = dn < 0 ? hit->ng : sh_neg(hit->ng);
-  double margin = sh_dot(sh_sub(sh_rt_offset(rt, hit->p, n), hit->p), n);
-  /* The tangent plane's distance along the ray, in double precision. */
-  double t = sh_dot(sh_sub(hit->p, o), hit->ng) / dn;
-  t -= fmax(margin, 0.0) / fabs(dn);
+  /* hit->t is the surface's own distance in double precision (its
+   * tangent plane's for a curved shape, nearer than the surface itself
+   * when the ray leaves the shape); step back by the side's bound along
+   * the normal, with the point's rounding there. */
+  double e = hit->err + float_err(rt, hit->p, 0.0);
+  double t = sh_dot(sh_sub(hit->p, o), hit->ng) / dn - e / fabs(dn);
   return fmax(fmin(t, hit->t), 0.0);
 }

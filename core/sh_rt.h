@@ -44,6 +44,16 @@ typedef struct sh_hit {
   sh_vec3 p;  /* the hit point, rebuilt from the surface's own parameters */
   sh_vec3 ng; /* unit geometric normal, outwards for closed shapes */
   int shape;  /* index into the scene's shapes */
+  /* A bound on how far from the surface a point near p may lie and still
+   * be put on the wrong side of it by Embree's single-precision tests (a
+   * shadow ray from it missing the surface or hitting it at once), beyond
+   * the rounding of the point itself into Embree's frame (which
+   * sh_rt_offset_by and sh_rt_free_end add): for a triangle the rounding
+   * of its float vertices relative to a ray origin at the point (8
+   * FLT_EPSILON of their distance), for an analytic shape a few double
+   * ulps of its size. World length. t, p and ng are double precision
+   * (sh_rt.c). */
+  double err;
 } sh_hit;
 
 /* Builds the ray-query structures for `scene`, which must outlive them.
@@ -69,9 +79,11 @@ sh_vec3 sh_rt_visibility(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
  * [0, threads). */
 typedef struct sh_shadow_hook {
   /* Fills vis[0 .. nlights-1] with the visibility of every light from the
-   * surface point p with unit normal n (facing the viewer) on shape
-   * `shape`. The tracer still skips lights behind the surface. */
-  int (*surface)(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
+   * surface point hit->p with unit normal n (facing the viewer) on shape
+   * hit->shape; shadow rays leave from sh_rt_offset_hit(rt, hit, n), as
+   * the tracer's own do. The tracer still skips lights behind the
+   * surface. */
+  int (*surface)(void *user, int thread, const sh_hit *hit, sh_vec3 n,
                  sh_vec3 *vis, sh_rt_counters *c);
   /* The visibility of light `light` from point x in the medium. */
   int (*volume)(void *user, int thread, sh_vec3 x, int light, sh_vec3 *vis,
@@ -106,24 +118,38 @@ void sh_rt_occluded_stream(const sh_rt *rt, int n, const sh_vec3 *o,
 unsigned sh_rt_classes(const sh_rt *rt);
 
 /* A ray origin for leaving surface point p along a direction on the side of
- * the unit normal n (pass -n for the other side): p moved off the surface
- * by a few float ulps of the frame Embree sees (centred on the shapes and
- * scaled to their size, so the offset is the same fraction of the scene
- * wherever it sits and however large it is), so that the new ray cannot
- * hit the surface it leaves (Waechter and Binder, Ray Tracing Gems,
- * ch. 6). */
+ * the unit normal n (pass -n for the other side): p moved along n by err
+ * (a bound on the float error of the surface about p, world length) and
+ * by the rounding of the point itself into the frame Embree sees, so that
+ * the new ray cannot hit the surface it leaves nor start behind it. The
+ * frame is centred where the camera looks from (sh_rt.c), so that the
+ * distance is a few float ulps of the distance from there, not of the
+ * scene's size: micrometres for a point a metre from an eye on a
+ * planet. */
+sh_vec3 sh_rt_offset_by(const sh_rt *rt, sh_vec3 p, sh_vec3 n, double err);
+
+/* sh_rt_offset_by with the hit's own bound (sh_hit.err). */
+sh_vec3 sh_rt_offset_hit(const sh_rt *rt, const sh_hit *hit, sh_vec3 n);
+
+/* sh_rt_offset_by for a point on an unknown primitive: the bound for the
+ * scene's largest triangle (a scene holding a triangle as large as a
+ * planet gets offsets of float ulps of that size; pass the hit where it
+ * is known). */
 sh_vec3 sh_rt_offset(const sh_rt *rt, sh_vec3 p, sh_vec3 n);
 
 /* The end of the ray o + t d's free part before `hit` (found by
  * sh_rt_intersect on that ray): the largest t whose point lies on the
- * ray's side of the hit surface by at least sh_rt_offset's distance. The
- * hit's own t comes from Embree's single-precision distance and may lie
- * beyond the surface, so that a point sampled at it (a medium's in-scatter
- * at the segment's end) is on the far side, inside a closed shape, and its
- * shadow ray reaches a light the surface should hide. The distance is
- * measured along the normal to the hit point's tangent plane, so a
- * grazing ray loses at most a sliver that close to the surface. Never
- * below 0. */
+ * ray's side of the hit surface by at least hit->err (and its own
+ * rounding), so that a point sampled there (a medium's in-scatter at the
+ * segment's end) is on the near side for Embree too and its shadow ray
+ * meets the surface. A float hit distance may lie beyond the surface, and
+ * a sample there, inside a closed shape, saw a light the surface hides
+ * (fd6a843). hit->t is exact in double precision and hit->err a few float
+ * ulps of the distance from the frame's origin (the camera), so near the
+ * eye the free end is the surface's distance less FLT_EPSILON of the
+ * largest coordinate's distance from the frame's origin, over |cos|, for
+ * an analytic surface, and for a triangle 8 FLT_EPSILON of the triangle's
+ * extent about the point over |cos| more. Never below 0. */
 double sh_rt_free_end(const sh_rt *rt, sh_vec3 o, sh_vec3 d, const sh_hit *hit);
 
 #ifdef __cplusplus

@@ -10,8 +10,11 @@
  * moved far from the origin and rotated, for a fan of camera rays over the
  * box, the point at sh_rt_free_end sees no light (the shadow ray to the
  * light inside the box is blocked) and lies within a small distance of the
- * hit (1e-3, a thousandth of the box). The count of rays whose point at Embree's own distance would see
- * the light is printed, to show what the check guards. */
+ * hit (1e-3, a thousandth of the box). The count of rays whose point at
+ * the hit's own distance (exact in double precision since the
+ * camera-relative frame: the point lies on the wall, either side for
+ * Embree) would see the light is printed, to show what the check
+ * guards. */
 #include "sh_camera.h"
 #include "sh_reference.h"
 #include "sh_rng.h"
@@ -130,7 +133,7 @@ static void check_fan(const pose *p, const char *name) {
   }
   fprintf(stderr,
           "%s: %d wall hits; the light seen from the free end %d times, from "
-          "Embree's distance %d times; free end before the hit by up to %.3g, "
+          "the hit's distance %d times; free end before the hit by up to %.3g, "
           "more than 1e-3: %d times\n",
           name, hits, leaks, leaks_at_t, most, far);
   SH_CHECK(hits > 50000);

@@ -24,12 +24,12 @@ static uint64_t point_seed(sh_vec3 p) {
   return h;
 }
 
-static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
+static int surface(void *user, int thread, const sh_hit *hit, sh_vec3 n,
                    sh_vec3 *vis, sh_rt_counters *c) {
+  sh_vec3 p = hit->p;
   (void)thread;
-  (void)shape;
   const lmm_area *A = user;
-  sh_vec3 origin = sh_rt_offset(A->rt, p, n);
+  sh_vec3 origin = sh_rt_offset_hit(A->rt, hit, n);
   /* Deterministic per point, so that images do not depend on threads. */
   sh_rng rng;
   sh_rng_seed(&rng, point_seed(p), 7);

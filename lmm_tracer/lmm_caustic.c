@@ -154,10 +154,10 @@ static int trace(tracer *tr, sh_vec3 o, sh_vec3 d) {
     double k = 1.0 - eta * eta * (1.0 - ci * ci);
     if (k < 0) {
       d = sh_reflect(d, nrm);
-      o = sh_rt_offset(tr->rt, hit.p, nrm);
+      o = sh_rt_offset_hit(tr->rt, &hit, nrm);
     } else {
       d = sh_normalize(sh_madd(sh_scale(d, eta), nrm, eta * ci - sqrt(k)));
-      o = sh_rt_offset(tr->rt, hit.p, sh_neg(nrm));
+      o = sh_rt_offset_hit(tr->rt, &hit, sh_neg(nrm));
     }
     refracted = 1;
   }

@@ -65,8 +65,10 @@ static void point_values(const lmm *L, const int g[3], sh_vec3 *values,
                        lmm_caustics_at(L->caustics, g[0], g[1], g[2], l));
 }
 
-static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
+static int surface(void *user, int thread, const sh_hit *hit, sh_vec3 n,
                    sh_vec3 *vis, sh_rt_counters *c) {
+  sh_vec3 p = hit->p;
+  int shape = hit->shape;
   lmm *L = user;
   scratch *sc = &L->scratch[thread];
   const sh_scene *scene = L->scene;
@@ -80,7 +82,7 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
   lmm_grid_cell(grid, sh_sub(p, sh_v3s(r)), lo);
   lmm_grid_cell(grid, sh_add(p, sh_v3s(r)), hi);
   for (int l = 0; l < nl; l++) sc->acc[l] = sh_v3s(0.0);
-  sh_vec3 origin = sh_rt_offset(L->rt, p, n);
+  sh_vec3 origin = sh_rt_offset_hit(L->rt, hit, n);
   /* Steps 1 and 2: the grid points in the sphere, on the front side. */
   int nc = 0;
   for (int k = lo[2]; k <= hi[2] + 1; k++)
@@ -88,7 +90,7 @@ static int surface(void *user, int thread, sh_vec3 p, sh_vec3 n, int shape,
       for (int i = lo[0]; i <= hi[0] + 1; i++) {
         if (!lmm_grid_contains(grid, i, j, k) || nc == sc->max_cand) continue;
         sh_vec3 x = lmm_grid_point(grid, i, j, k), dx = sh_sub(x, p);
-        if (sh_dot(dx, dx) > r * r || sh_dot(n, dx) <= 0) continue;
+        if (sh_dot(dx, dx) > r * r || sh_dot(n, dx) <= 4 * hit->err) continue;
         sh_vec3 to = sh_sub(x, origin);
         double dist = sh_length(to);
         if (dist <= 0) continue;
