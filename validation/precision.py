@@ -19,6 +19,13 @@ in fog over a floor, a black ball shadowing the shaft; the case of
   differs);
 - the scene moved by 1e3 ... 1e9 along (1, -1, 1): likewise.
 
+With --planet, instead: planet_test's scenes (issue 12 part 5; the eye
+1 m above a 6360 km ground sphere, a spot 30 m up in 40 m of fog, a box
+shading the shaft; the same over a flat ground quad 2e7 m across; the
+planet from 30,000 km in a shell of Rayleigh fog), each renderer against
+the reference (256 samples), and moved by 1e7 (1, -1, 1) and scaled by
+1e-9 and 1e9 against its own plain image.
+
 Relative RMS over the lit region (shafts_compare, lit 0.01); 'fail' where a
 renderer exits with an error. Renderers (--renderers): lmm_tracer's
 reference and lmm modes, gl_shafts, POV-Ray and Blender's Cycles (256
@@ -40,6 +47,50 @@ from .hard.cases import base_scene, camera_at, moved, scaled
 DISTANCES = [5.0, 50.0, 500.0, 5000.0, 5e4, 5e5, 5e6, 5e7]
 SCALES = [1e-12, 1e-9, 1e-6, 1e-3, 1e3, 1e6, 1e9, 1e12]
 OFFSETS = [1e3, 1e6, 1e7, 1e8, 1e9]
+
+
+R_PLANET = 6360e3
+
+
+def planet_ground(w, h, quad=False):
+    """gl_shafts/planet_test.c's ground scene; with quad, the ground a
+    flat quad 2e7 m across at y = 0 instead of the sphere."""
+    ground = ({"type": "quad", "material": "ground", "corner": [-1e7, 0, 1e7],
+               "u": [2e7, 0, 0], "v": [0, 0, -2e7]} if quad else
+              {"type": "sphere", "material": "ground", "center": [0, -R_PLANET, 0],
+               "radius": R_PLANET})
+    return {
+        "format": "shafts-scene", "version": 1,
+        "camera": {"position": [0, 1, 0], "look_at": [0, 3, -60], "fov_y_deg": 50,
+                   "width": w, "height": h},
+        "medium": {"sigma_s": [0.02] * 3, "sigma_a": [0.002] * 3,
+                   "phase": {"type": "henyey_greenstein", "g": 0.3},
+                   "bounds": {"min": [-100, -1, -200], "max": [100, 40, 5]}},
+        "lights": [{"type": "spot", "position": [0, 30, -60], "direction": [0, -1, 0],
+                    "intensity": [3000] * 3, "outer_angle_deg": 30,
+                    "inner_angle_deg": 20, "exponent": 1}],
+        "materials": {"ground": {"diffuse": [0.3] * 3}, "box": {"diffuse": [0.5, 0.4, 0.3]}},
+        "shapes": [ground, {"type": "box", "material": "box", "min": [-3, 12, -63],
+                            "max": [3, 14, -57]}],
+    }
+
+
+def planet_space(w, h):
+    """gl_shafts/planet_test.c's planet from 30,000 km."""
+    top, dist = 6560e3, 3e7
+    return {
+        "format": "shafts-scene", "version": 1,
+        "camera": {"position": [0, 0, dist], "look_at": [0, 0, 0],
+                   "fov_y_deg": 2 * math.degrees(math.atan(1.3 * top / dist)),
+                   "width": w, "height": h},
+        "medium": {"sigma_s": [3e-8] * 3, "sigma_a": [0, 0, 0], "phase": {"type": "rayleigh"},
+                   "bounds": {"min": [-top] * 3, "max": [top] * 3}},
+        "lights": [{"type": "directional", "direction": [-0.8, 0, -0.6],
+                    "irradiance": [1, 1, 1]}],
+        "materials": {"ground": {"diffuse": [0.3] * 3}},
+        "shapes": [{"type": "sphere", "material": "ground", "center": [0, 0, 0],
+                    "radius": R_PLANET}],
+    }
 
 
 def renderers(build, work):
@@ -83,6 +134,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--build-dir", default="build")
     ap.add_argument("--width", type=int, default=48)
+    ap.add_argument("--planet", action="store_true",
+                    help="the planet-scale table only (see above)")
     ap.add_argument("--renderers", default="reference,lmm,gl_shafts,povray",
                     help="comma-separated, of reference, lmm, gl_shafts, povray, cycles "
                          "(Blender's Cycles, 256 samples; slow) and cycles_unscaled (the "
@@ -133,6 +186,25 @@ def main(argv=None):
             return out
 
         names = [n for n, _ in rs]
+        if args.planet:
+            print("Planet scale: against the reference (256 samples); moved by 1e7 (1, -1, 1) "
+                  "and scaled, against the renderer's own plain image:\n")
+            cols = ["reference", "moved 1e7", "scaled 1e-9", "scaled 1e9"]
+            print("| scene | renderer | " + " | ".join(cols) + " |")
+            print("|---" * (len(cols) + 2) + "|")
+            scenes = [("eye 1 m above a 6360 km sphere", planet_ground(w, h)),
+                      ("eye 1 m above a quad 2e7 m across", planet_ground(w, h, quad=True)),
+                      ("the planet from 30,000 km", planet_space(w, h))]
+            for title, scene in scenes:
+                ref = reference(scene)
+                for n, fn in rs:
+                    own = render(n, scene, fn)
+                    cells = [error(ref, own)]
+                    cells.append(error(own, render(n, moved(scene, (1e7, -1e7, 1e7)), fn)))
+                    for k in (1e-9, 1e9):
+                        cells.append(error(own, render(n, scaled(scene, k), fn)))
+                    print("| %s | %s | %s |" % (title, n, " | ".join(cells)))
+            return 0
         print("Camera distance (the framing kept), against the reference there:\n")
         print("| distance | fov (degrees) | " + " | ".join(names) + " |")
         print("|---" * (len(names) + 2) + "|")
