@@ -30,7 +30,7 @@ the data; and with --scale none the export warns as before.
 
 `eevee`: the same export rendered by EEVEE (16 samples, under xvfb-run):
 scaled by 1e-9 and moved by (1e7, 0, -1e7) against the plain scene's image,
-within 0.1% (measured 1.5e-8 and 1.6e-5: EEVEE's absolute shadow and
+within 0.1% (measured 1.5e-8 to 3.7e-5, EEVEE's own run-to-run spread: its absolute shadow and
 volumetric distances now meet a scene of ordinary size).
 
 Figures and the frame the exporter chooses: docs/scene_export.md,
@@ -168,31 +168,51 @@ def flag(cond, what):
     return cond
 
 
-def check_eevee(build, work):
-    plain = blender_render(build, work, "plain", variant(5.0), 16, "eevee")
+def stem(name):
+    return re.sub(r"\W+", "_", name)
+
+
+def same_as_plain(build, render, cases, label=""):
+    """Whether each case (name, scale, offset) of the scene seen from 5
+    units, drawn by render(file stem, scene), is within 0.1% of the plain
+    scene's image."""
+    plain = render("plain", variant(5.0))
     ok = True
-    for name, scale, offset in (("scale 1e-9", 1e-9, (0, 0, 0)),
-                                ("moved by (1e7, 0, -1e7)", 1.0, (1e7, 0, -1e7))):
-        img = blender_render(build, work, re.sub(r"\W+", "_", name),
-                             variant(5.0, scale, offset), 16, "eevee")
-        ok &= compare(build, plain, img, 1e-3, "EEVEE, " + name + " against the plain scene")
+    for name, scale, offset in cases:
+        img = render(stem(name), variant(5.0, scale, offset))
+        ok &= compare(build, plain, img, 1e-3, label + name + " against the plain scene")
     return ok
 
 
+def far_against_reference(build, work, render, distance, bound, what):
+    """Whether the scene seen from `distance`, drawn by render, is within
+    `bound` of lmm_tracer's reference there."""
+    scene = variant(distance)
+    name = "far%g" % distance
+    img = render(name, scene)
+    return compare(build, reference(build, work, scene, name + "_ref"), img, bound,
+                   "%s, camera %g units away against the reference" % (what, distance))
+
+
+def check_eevee(build, work):
+    return same_as_plain(
+        build, lambda name, scene: blender_render(build, work, name, scene, 16, "eevee"),
+        (("scale 1e-9", 1e-9, (0, 0, 0)), ("moved by (1e7, 0, -1e7)", 1.0, (1e7, 0, -1e7))),
+        "EEVEE, ")
+
+
 def check_cycles(build, work):
-    far = variant(5000.0)
-    img = blender_render(build, work, "far", far)
-    ok = compare(build, reference(build, work, far), img, 0.03,
-                 "Cycles, camera 5000 units away against the reference")
-    plain = blender_render(build, work, "plain", variant(5.0), 16)
-    for name, scale, offset, frame in (
-            ("scale 1e-9", 1e-9, (0, 0, 0), (1e9, [0, 0, 0])),
-            ("scale 1e6", 1e6, (0, 0, 0), (1e-6, [0, 0, 0])),
-            ("moved by (1e7, 0, -1e7)", 1.0, (1e7, 0, -1e7), (1.0, [1e7, 2, -1e7]))):
-        stem = re.sub(r"\W+", "_", name)
-        img = blender_render(build, work, stem, variant(5.0, scale, offset), 16)
-        ok &= compare(build, plain, img, 1e-3, name + " against the plain scene")
-        got = frame_of(work, stem)
+    ok = far_against_reference(
+        build, work, lambda name, scene: blender_render(build, work, name, scene), 5000.0,
+        0.03, "Cycles")
+    frames = {"scale 1e-9": (1e9, [0, 0, 0]), "scale 1e6": (1e-6, [0, 0, 0]),
+              "moved by (1e7, 0, -1e7)": (1.0, [1e7, 2, -1e7])}
+    ok &= same_as_plain(
+        build, lambda name, scene: blender_render(build, work, name, scene, 16),
+        (("scale 1e-9", 1e-9, (0, 0, 0)), ("scale 1e6", 1e6, (0, 0, 0)),
+         ("moved by (1e7, 0, -1e7)", 1.0, (1e7, 0, -1e7))))
+    for name, frame in frames.items():
+        got = frame_of(work, stem(name))
         ok &= flag(math.isclose(got[0], frame[0], rel_tol=1e-12) and
                    all(abs(a - b) <= 1e-9 * max(1.0, abs(b)) for a, b in zip(got[1], frame[1])),
                    "%s: the data states the frame %s (%s)" % (name, frame, got))
@@ -200,28 +220,21 @@ def check_cycles(build, work):
                "the export of a scene scaled by 1e-9 does not warn")
     ok &= flag(warns(build, work, "tiny", variant(5.0, 1e-9), "--scale", "none"),
                "the export of a scene scaled by 1e-9 with --scale none warns")
-    ok &= flag(not warns(build, work, "plain", far),
+    ok &= flag(not warns(build, work, "far", variant(5000.0)),
                "the export of the far camera does not warn")
     return ok
 
 
 def check_pov(build, work):
-    far = variant(5000.0)
-    img = pov_render(build, work, "far", far)
-    ok = compare(build, reference(build, work, far), img, 0.02,
-                 "camera 5000 units away against the reference")
-    text = open(os.path.join(work, "far.pov"), encoding="utf-8").read()
+    def render(name, scene):
+        return pov_render(build, work, name, scene)
+    ok = far_against_reference(build, work, render, 5000.0, 0.02, "POV-Ray")
+    text = open(os.path.join(work, "far5000.pov"), encoding="utf-8").read()
     ok &= flag(re.search(r"lengths multiplied by 100\b", text) is not None,
                "the .pov is scaled by 100, from the scene's size, not the camera's distance")
-    farther = variant(5e7)
-    img = pov_render(build, work, "farther", farther)
-    ok &= compare(build, reference(build, work, farther, "farther_ref"), img, 0.02,
-                  "camera 5e7 units away against the reference")
-    plain = pov_render(build, work, "plain", variant(5.0))
-    for name, scale, offset in (("scale 1e-9", 1e-9, (0, 0, 0)),
-                                ("moved by (1e6, 0, -1e6)", 1.0, (1e6, 0, -1e6))):
-        img = pov_render(build, work, re.sub(r"\W+", "_", name), variant(5.0, scale, offset))
-        ok &= compare(build, plain, img, 1e-3, name + " against the plain scene")
+    ok &= far_against_reference(build, work, render, 5e7, 0.02, "POV-Ray")
+    ok &= same_as_plain(build, render, (("scale 1e-9", 1e-9, (0, 0, 0)),
+                                        ("moved by (1e6, 0, -1e6)", 1.0, (1e6, 0, -1e6))))
     return ok
 
 
