@@ -27,10 +27,11 @@
  * fraction of the smallest scale height, and volume_max_steps lets a ray
  * cross the shell's longest chord in such steps.
  *
- * Lengths and coefficients go through the frame (se_frame.h), so the
- * export follows the Blender frame's scale: Cycles drops a closure whose
- * mean weight per unit length is below 1e-5 (CLOSURE_WEIGHT_CUTOFF), which
- * with the Earth in kilometres happens only above about 58 km. */
+ * Lengths and coefficients go through the export's frame (se_frame.h,
+ * se_scale.h), which puts the Earth in units of 10^4 km; there the sky
+ * agrees with the reference, and in the scene's kilometres (--scale 1) it
+ * came out 8% dark for a cause not found (docs/scene_export.md, Blender,
+ * Atmosphere). */
 #ifndef SE_BLENDER_ATMO_H
 #define SE_BLENDER_ATMO_H
 

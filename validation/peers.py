@@ -101,13 +101,13 @@ BOUNDS = {
 #    of before: 0.131, ratio 1.254).
 #  atmosphere_sunset_small in Cycles (24x18, the same sky): noise plus the
 #    phases (Rayleigh as two HG lobes, Cornette-Shanks as one): measured
-#    mean_rel 0.146 against a two-seed noise of 0.200, ratio 0.938 at 128
-#    spp.
+#    mean_rel 0.149 against a two-seed noise of 0.188, ratio 1.024 at 128
+#    spp (the ratio moves by about 3% between seeds at this size).
 SCENE_BOUNDS = {
     ("height_fog_cs", "pov"): {"mean_rel": 0.08, "ratio": 0.05},
     ("sun_disk", "cycles"): {"mean_rel": "noise+0.005", "ratio": 0.03},
     ("atmosphere_sunset", "pov"): {"mean_rel": 0.04, "ratio": 0.05},
-    ("atmosphere_sunset_small", "cycles"): {"mean_rel": "noise+0.05", "ratio": 0.12},
+    ("atmosphere_sunset_small", "cycles"): {"mean_rel": "noise+0.05", "ratio": 0.08},
 }
 
 # The settings of each target: POV-Ray's draft media sampling (200
