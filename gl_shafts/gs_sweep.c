@@ -200,6 +200,8 @@ sh_status gs__sweep_light(gs__sweep *sw, const gs__sweep_job *job,
   gs__param_f(p, "u_inv_sub_angle", 1.0 / sub);
   gs__param_f(p, "u_inv_sub_texels", 1.0 / job->sub_texels);
   gs__param_2f(p, "u_map_size", job->map_width, job->map_height);
+  gs__param_f(p, "u_shadow_res",
+              ls->shadow != GS__SHADOW_NONE && job->shadow ? job->shadow->res : 0);
   gs__param_f(p, "u_tau_rate", tau_sub || !live ? 2.0 * smax / GS__SUB_TAU : 0.0);
   const double *m = job->lattice_map;
   gs__param_4f(p, "u_xi_xy", m[0], m[1], m[2], m[3]);

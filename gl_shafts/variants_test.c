@@ -86,6 +86,7 @@ static void build_passes(const gs__frame *fr, const gs__light_setup *ls, int row
   gs__param_f(p, "u_inv_sub_angle", 100.0);
   gs__param_f(p, "u_inv_sub_texels", 0.5);
   gs__param_2f(p, "u_map_size", 64, 64);
+  gs__param_f(p, "u_shadow_res", 1024);
   gs__param_f(p, "u_tau_rate", 0.4);
   gs__param_4f(p, "u_xi_xy", 0.5, 0.5, 0.5, 0.5);
   gs__param_2f(p, "u_xi_z", 0.1, 0.0);
