@@ -187,6 +187,32 @@ static sh_status check_accessors(const check *c, const json_t *root) {
   return SH_OK;
 }
 
+/* The skin of each node that has one: assimp reads one inverse bind
+ * matrix per joint from the accessor `inverseBindMatrices`, through a null
+ * pointer when it is missing (which glTF allows, meaning identities) and
+ * past the accessor's data when it holds fewer matrices than joints. */
+static sh_status check_skins(const check *c, const json_t *root) {
+  const json_t *nodes = json_object_get(root, "nodes"), *skins = json_object_get(root, "skins");
+  const json_t *accessors = json_object_get(root, "accessors");
+  for (size_t i = 0; i < json_array_size(nodes); i++) {
+    long long k = whole(json_array_get(nodes, i), "skin");
+    if (k < 0 || (unsigned long long)k >= json_array_size(skins)) continue; /* assimp refuses */
+    const json_t *skin = json_array_get(skins, (size_t)k);
+    size_t joints = json_array_size(json_object_get(skin, "joints"));
+    long long ibm = whole(skin, "inverseBindMatrices");
+    sh__jseg seg[3] = {{"skins", 0}, {NULL, (int)k}, {"inverseBindMatrices", 0}};
+    if (ibm < 0)
+      return fail(c, seg, json_object_get(skin, "inverseBindMatrices") ? 3 : 2,
+                  "a skin (of node %zu) needs its inverseBindMatrices: assimp 5.2 reads "
+                  "them without checking that they are there", i);
+    long long count = whole(json_array_get(accessors, (size_t)ibm), "count");
+    if ((unsigned long long)ibm < json_array_size(accessors) && (count < 0 || (size_t)count < joints))
+      return fail(c, seg, 3, "accessor %lld holds %lld inverse bind matrices, fewer than the "
+                  "skin's %zu joints", ibm, count, joints);
+  }
+  return SH_OK;
+}
+
 static uint32_t le32(const unsigned char *p) {
   return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
@@ -222,6 +248,7 @@ sh_status sh__gltf_check(const char *path, const char *data, size_t size, sh_err
   }
   sh_status st = check_nodes(&c, root);
   if (st == SH_OK) st = check_accessors(&c, root);
+  if (st == SH_OK) st = check_skins(&c, root);
   json_decref(root);
   return st;
 }

@@ -9,6 +9,10 @@
  *     sparse count from its index and value views without a bound (a heap
  *     over-read), and without its `indices` or `values` objects, or their
  *     `bufferView`, assimp reads through a null pointer;
+ *   - a skin's inverse bind matrices are read, one a joint, through a
+ *     null pointer when the skin has none (glTF allows that: identities)
+ *     and past the accessor when it holds fewer than the joints (found by
+ *     hand: SEGV in the fuzzing build, fuzz/known/gltf_skin_*);
  *   - a node that is the child of two nodes is copied for each (glTF 2.0
  *     says the hierarchy is a set of disjoint trees): a chain of 24 nodes
  *     each naming the next twice, 1.3 kB, took over 2 GB.

@@ -1,6 +1,7 @@
 /* Tests of sh_gltf_check.h through sh_mesh_load: the glTF files on which
  * Debian's assimp 5.2 allocated gigabytes, read through a null pointer or
- * past a buffer, or copied a shared node exponentially (fuzz/known/gltf_*,
+ * past a buffer (sparse accessors, skins), or copied a shared node
+ * exponentially (fuzz/known/gltf_*,
  * the harness's first byte dropped), and their kind, each refused at once
  * at the JSON's line, column and key path; valid files, a sparse accessor
  * among them, still load. */
@@ -81,7 +82,11 @@ int main(void) {
       {"gltf_sparse_overread", "sparse_overread.gltf", "accessors[0].sparse.count",
        "100000000", "a sparse accessor's count is a whole number from 1 to the accessor's count (3)"},
       {"gltf_shared_nodes", "shared_nodes.gltf", "nodes[0].children[1]", "1]}",
-       "node 1 is a child of two nodes, or twice of one"}};
+       "node 1 is a child of two nodes, or twice of one"},
+      {"gltf_skin_null", "skin_null.gltf", "skins[0]", "{\"joints\"",
+       "a skin (of node 1) needs its inverseBindMatrices"},
+      {"gltf_skin_overread", "skin_overread.gltf", "skins[0].inverseBindMatrices",
+       "2}]}", "accessor 2 holds 1 inverse bind matrices, fewer than the skin's 900"}};
   for (size_t i = 0; i < sizeof KNOWN / sizeof KNOWN[0]; i++) {
     unsigned char buf[4096];
     size_t n = read_known(KNOWN[i].known, buf, sizeof buf - 1);
