@@ -348,12 +348,13 @@ static sh_status read_list(reader *r, const ply_element *e, const ply_prop *pr,
   double c;
   sh_status st = read_value(r, pr->count_type, what, &c);
   if (st != SH_OK) return st;
-  long line = r->m.line; /* the count's */
-  if (c < 0) return fail(r, r->format == FMT_ASCII ? r->m.line : 0, "a list's count is negative");
+  /* Errors at the count's line, or at the cursor's byte in binary data. */
+  long line = r->format == FMT_ASCII ? r->m.line : 0;
+  if (c < 0) return fail(r, line, "a list's count is negative");
   size_t n = (size_t)c, left = (size_t)(r->m.end - r->m.p);
   /* Each entry takes a byte at least (ASCII) or its size (binary). */
   if (n > left / (r->format == FMT_ASCII ? 1 : TYPE_SIZE[pr->type]))
-    return fail(r, r->format == FMT_ASCII ? line : 0,
+    return fail(r, line,
                 "a list of element '%s' counts %zu entries, more than the %zu bytes "
                 "left hold", e->name, n, left);
   if (pr->role == ROLE_INDICES && (st = sh__mesh_reader_list(&r->m, n)) != SH_OK) return st;

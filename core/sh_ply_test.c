@@ -79,6 +79,13 @@ int main(void) {
       SH_CHECK(m.indices[0] == 0 && m.indices[1] == 1 && m.indices[2] == 2);
     }
     sh_mesh_free(&m);
+    /* An index out of range, in binary data: at the byte after the list. */
+    unsigned char bad[1024];
+    memcpy(bad, buf, n);
+    bad[be ? n - 1 : n - 4] = 9;
+    char want[64];
+    snprintf(want, sizeof want, "byte %zu: a face refers to vertex 9 of 3", n);
+    expect_error(be ? "index_be.ply" : "index_le.ply", bad, n, want);
     /* Cut inside the data: an error at a byte offset. */
     expect_error(be ? "cut_be.ply" : "cut_le.ply", buf, n - 3, "byte");
     /* The header with no end_header, in binary. */
