@@ -346,15 +346,6 @@ void sh_medium_locate_type(const sh_scene *scene, sh_error *err) {
 sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
                                   unsigned kinds, sh_error *err) {
   const sh_medium *m = &scene->medium;
-  if (m->present && m->phase.type == SH_PHASE_CORNETTE_SHANKS) {
-    sh_error_set(err, SH_ERR_SCENE,
-                 "%s does not render the cornette_shanks phase function yet; "
-                 "lmm_tracer renders it (docs/scene-format.md, \"Non-uniform "
-                 "media\")",
-                 who);
-    refusal_at(scene, m->phase_line, m->phase_column, "medium.phase.type", err);
-    return SH_ERR_SCENE;
-  }
   if (!m->present || (kinds & SH_MEDIUM_KIND(m->type))) return SH_OK;
   /* The kinds it renders, as the format spells them. */
   char names[128] = "";

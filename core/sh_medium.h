@@ -148,10 +148,9 @@ double sh_medium_sample_distance(const sh_medium *m, sh_vec3 o, sh_vec3 d,
 void sh_medium_locate_type(const sh_scene *scene, sh_error *err);
 
 /* For a tool that renders the medium kinds in `kinds`, a mask of
- * SH_MEDIUM_KIND(type) bits, and the format's first five phase functions:
- * SH_ERR_SCENE, located at the scene's medium.phase.type or medium.type
- * and naming `who` (the tool) and the kinds it renders, if the medium has
- * the cornette_shanks phase or another kind; SH_OK otherwise. */
+ * SH_MEDIUM_KIND(type) bits: SH_ERR_SCENE, located at the scene's
+ * medium.type and naming `who` (the tool) and the kinds it renders, if the
+ * medium is of another kind; SH_OK otherwise. */
 #define SH_MEDIUM_KIND(type) (1u << (unsigned)(type))
 sh_status sh_medium_require_kinds(const sh_scene *scene, const char *who,
                                   unsigned kinds, sh_error *err);

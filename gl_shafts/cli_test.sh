@@ -47,7 +47,12 @@ height_fog_scene "$dir/good.json" "$dir/fog.json"
 "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q; check "height fog renders" 0 $?
 [ -s "$dir/fog_out.exr" ] || { echo "FAIL: height fog: no output"; fail=1; }
 rm -f "$dir/fog.json" "$dir/fog_out.exr"
-cornette_shanks_refused "$dir/good.json" gl_shafts "$tool" "$dir/fog.json" -o "$dir/fog_out.exr" -q
+# So is the cornette_shanks phase function in the sweep's media.
+sed 's/"medium": {"sigma_s"/"medium": {"phase": {"type": "cornette_shanks", "g": 0.7}, "sigma_s"/' \
+  "$dir/good.json" >"$dir/cs.json"
+"$tool" "$dir/cs.json" -o "$dir/cs_out.exr" -q; check "cornette_shanks renders" 0 $?
+[ -s "$dir/cs_out.exr" ] || { echo "FAIL: cornette_shanks: no output"; fail=1; }
+rm -f "$dir/cs.json" "$dir/cs_out.exr"
 # A finite double that is no float (a camera 1e39 away) never becomes a
 # shader literal or a uniform: a clear error, not a shader that fails to
 # compile.

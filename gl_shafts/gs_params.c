@@ -29,7 +29,7 @@ static void defines(gs__params *p, const sh_scene *scene,
     case SH_PHASE_NISHITA_HAZY: phase = GS_PHASE_NISHITA_HAZY; break;
     case SH_PHASE_NISHITA_MURKY: phase = GS_PHASE_NISHITA_MURKY; break;
     case SH_PHASE_RAYLEIGH: phase = GS_PHASE_RAYLEIGH; break;
-    case SH_PHASE_CORNETTE_SHANKS: break; /* refused (gs_renderer_create) */
+    case SH_PHASE_CORNETTE_SHANKS: phase = GS_PHASE_CORNETTE_SHANKS; break;
     }
   const sh_vec3 t = m->sigma_t;
   int grey = !m->present || (t.x == t.y && t.y == t.z);

@@ -9,7 +9,7 @@
  * spot's cone clipping, live or baked programs, no medium, a homogeneous
  * one or height fog (the MEDIUM switch). With
  * each combination, the switches that values decide (the phase function's
- * 5 types, grey or coloured sigma_t, the spot's edge and exponent class,
+ * 6 types, grey or coloured sigma_t, the spot's edge and exponent class,
  * the light inside or outside the medium, XI_EXACT, JITTER and TAU_SUB)
  * go through ROWS rows so that each of their values meets each
  * combination; their full product with the structural ones (tens of
@@ -105,8 +105,11 @@ static void set_row(sh_scene *s, int row, int medium) {
   m->type = medium == 2 ? SH_MEDIUM_HEIGHT_FOG : SH_MEDIUM_HOMOGENEOUS;
   m->base_height = 0.5;
   m->scale_height = 1.5;
-  m->phase.type = (sh_phase_type)(row % 5);
-  m->phase.g = m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? 0.3 : 0.0;
+  m->phase.type = (sh_phase_type)(row % 6);
+  m->phase.g = m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ||
+                       m->phase.type == SH_PHASE_CORNETTE_SHANKS
+                   ? 0.3
+                   : 0.0;
   m->sigma_t = row & 1 ? sh_v3(0.2, 0.2, 0.2) : sh_v3(0.2, 0.3, 0.4);
   m->sigma_s = sh_scale(m->sigma_t, 0.9);
   l->position = (row >> 1) & 1 ? sh_v3(0, 2, 0) : sh_v3(0, 6, 0); /* in, out */

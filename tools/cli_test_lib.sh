@@ -188,17 +188,6 @@ height_fog_refused() { # good scene, what, command... (the output is $dir/fog_ou
   ls "$dir" | grep -q '^fog_out' && { echo "FAIL: $what wrote an output"; fail=1; }
   rm -f "$dir/fog.json"
 }
-# The same for the cornette_shanks phase function (located at phase.type).
-cornette_shanks_refused() { # good scene, what, command... (output $dir/fog_out.*)
-  local good=$1 what=$2; shift 2
-  sed 's/"medium": {"sigma_s"/"medium": {"phase": {"type": "cornette_shanks", "g": 0.7}, "sigma_s"/' \
-    "$good" >"$dir/fog.json"
-  "$@" >/dev/null 2>"$dir/err"; check "$what refuses cornette_shanks" 2 $?
-  grep -q "fog.json:[0-9]*:31: medium.phase.type: .*cornette_shanks" "$dir/err" \
-    || { echo "FAIL: $what cornette_shanks message: $(cat "$dir/err")"; fail=1; }
-  ls "$dir" | grep -q '^fog_out' && { echo "FAIL: $what wrote an output"; fail=1; }
-  rm -f "$dir/fog.json"
-}
 # The camera at a point light inside the medium (issue 11): a warning
 # naming the light and the convention's distance, exit 0, finite output.
 camera_at_light_warns() { # tool

@@ -46,9 +46,7 @@ float mie_phase(float c) {
   float den = 1.0 + g * g - 2.0 * g * c;
   return (1.0 - g * g) / (4.0 * PI * den * sqrt(den));
 #elif MIE_PHASE == ATMO_MIE_CS
-  float den = 1.0 + g * g - 2.0 * g * c;
-  return 3.0 * (1.0 - g * g) * (1.0 + c * c) /
-         (8.0 * PI * (2.0 + g * g) * den * sqrt(den));
+  return phase_cornette_shanks(g, c);
 #elif MIE_PHASE == ATMO_MIE_HAZY
   float x = 0.5 * (1.0 + c), x2 = x * x, x4 = x2 * x2;
   return (1.0 + 9.0 * x4 * x4) / (8.0 * PI);

@@ -8,7 +8,7 @@
 //   SHADOW      GS_SHADOW_NONE, GS_SHADOW_2D or GS_SHADOW_CUBE
 //   CONE_CLIP   1 to clip rays to the spot's cone (outer angle < 90 degrees)
 //   PHASE       GS_PHASE_ISOTROPIC, _HENYEY_GREENSTEIN, _NISHITA_HAZY,
-//               _NISHITA_MURKY or _RAYLEIGH
+//               _NISHITA_MURKY, _RAYLEIGH or _CORNETTE_SHANKS
 //   XI_EXACT    1: xi per fragment; 0: interpolated from the lattice
 //   JITTER      1: jittered sample depth within each plane's slab
 //   GREY_SIGMA  1 if sigma_t is the same in R, G and B
@@ -160,9 +160,18 @@ vec3 optical_depth_eye(vec3 o, vec3 d, float z) {
   return t.y > t.x ? optical_depth_span(o, d, length(d), t.x, t.y) : vec3(0.0);
 }
 
+// Cornette and Shanks' phase function of asymmetry g at cos(alpha)
+// (sh_phase_eval).
+float phase_cornette_shanks(float g, float c) {
+  float den = 1.0 + g * g - 2.0 * g * c;
+  return 3.0 * (1.0 - g * g) * (1.0 + c * c) / (8.0 * PI * (2.0 + g * g) * den * sqrt(den));
+}
+
 // The normalised phase function at cos(alpha) (sh_phase_eval).
 float phase(float c) {
-#if PHASE == GS_PHASE_HENYEY_GREENSTEIN
+#if PHASE == GS_PHASE_CORNETTE_SHANKS
+  return phase_cornette_shanks(u_g, c);
+#elif PHASE == GS_PHASE_HENYEY_GREENSTEIN
   float den = 1.0 + u_g * u_g - 2.0 * u_g * c;
   return (1.0 - u_g * u_g) / (4.0 * PI * den * sqrt(den));
 #elif PHASE == GS_PHASE_NISHITA_HAZY

@@ -19,6 +19,7 @@
 #define GS_PHASE_NISHITA_HAZY 2
 #define GS_PHASE_NISHITA_MURKY 3
 #define GS_PHASE_RAYLEIGH 4
+#define GS_PHASE_CORNETTE_SHANKS 5
 
 /* MEDIUM: the medium's kind (sh_medium_type; gs_medium.h, medium.glsl). */
 #define GS_MEDIUM_HOMOGENEOUS 0
