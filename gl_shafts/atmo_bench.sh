@@ -37,7 +37,7 @@ mkdir -p "$cache"
 scenes=("$root/scenes/sky_sunset.json" "$root/scenes/earth_from_space.json")
 echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%FT%TZ), $(git -C "$root" rev-parse --short HEAD)"
 echo
-echo "### Speed at 640x480, defaults (the planes column is gl_shafts_bench's; the atmosphere draws 16 planes or 10 spheres)"
+echo "### Speed at 640x480, defaults (planes: the sampling planes, or spheres from space; lattice and planes ms: the layers on the lattice and the full-resolution passes)"
 echo
 nice -n 10 "$bench" --size 640 480 --frames "$frames" --ref-spp 0 "${scenes[@]}"
 echo

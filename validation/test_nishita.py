@@ -92,5 +92,48 @@ class BenchSkyView(unittest.TestCase):
             bench_sky.blender_sky_view(s)
 
 
+class BenchTable(unittest.TestCase):
+    """bench_sky's table: the truth's noise, errors net of it, the time at
+    gl_shafts' error and issue 12's verdict."""
+
+    class Ctx:
+        spp, ref_spp = 4, 16
+
+    class Scene:
+        width, height = 640, 480
+
+    def rows(self, gl_secs=0.030):
+        return [("gl_shafts", "defaults", gl_secs, 0.028),
+                ("reference", "4 spp", 10.0, 0.05),
+                ("pov", "draft", 5.0, 0.13)]
+
+    def test_truth_noise(self):
+        # e_ref^2 = s^2 (1/4 + 1/16): s^2 = 0.008, the truth's s^2 / 16.
+        n2 = bench_sky.truth_noise2(self.Ctx, self.rows())
+        self.assertAlmostEqual(n2, 0.0005, places=12)
+        self.assertAlmostEqual(bench_sky.net(0.028, n2), math.sqrt(0.000284), places=12)
+        self.assertEqual(bench_sky.net(0.01, n2), 0.0)  # below the truth's noise
+        self.assertIsNone(bench_sky.truth_noise2(self.Ctx, self.rows()[:1]))
+
+    def test_table(self):
+        text = bench_sky.table(self.Ctx, "sky", self.Scene, self.rows())
+        # The reference at gl_shafts' error: 10 s x (0.002 / 0.000284).
+        self.assertIn("%.4g (est.)" % (10.0 * 0.002 / 0.000284), text)
+        self.assertIn("| pov | draft |", text)
+        self.assertIn("n/a: not noise", text)
+        self.assertIn(": met", text)
+        slow = bench_sky.table(self.Ctx, "sky", self.Scene, self.rows(0.060))
+        self.assertIn("NOT met", slow)
+        quiet = [("gl_shafts", "defaults", 0.03, 0.01)] + self.rows()[1:]
+        text = bench_sky.table(self.Ctx, "sky", self.Scene, quiet)
+        self.assertIn("gl_shafts' error within the truth's noise", text)
+
+    def test_size(self):
+        class Small:
+            width, height = 64, 48
+        text = bench_sky.table(self.Ctx, "sky", Small, self.rows())
+        self.assertIn("not judged (not 640x480)", text)
+
+
 if __name__ == "__main__":
     unittest.main()
