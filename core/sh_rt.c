@@ -18,9 +18,11 @@ typedef struct sh__prim {
   float *verts;      /* triangle vertices in the rt's frame, 3 floats each */
   unsigned *indices; /* 3 per triangle */
   int nverts, ntris;
-  /* Cylinder frame in object space. */
+  /* Cylinder frame in object space; a quad's unit normal (cross(u, v),
+   * as its triangles face) in axis and its Gram matrix. */
   sh_vec3 axis;
   double length;
+  double uu, uv, vv, det;
   unsigned mask; /* the shape's SH_RT_* class bit */
   int identity;  /* the shape has no transform: skip the matrices */
   double diam;   /* analytic: the world bounds' diagonal; triangles: the
@@ -129,6 +131,23 @@ static int analytic_hit(const sh__prim *pr, sh_vec3 o, sh_vec3 d, double tnear,
     if (found)
       *n_out = sh_scale(sh_sub(sh_madd(o, d, best), s->center),
                         1.0 / s->radius);
+  } else if (s->type == SH_SHAPE_QUAD) {
+    /* The plane's crossing, inside the parallelogram by its coordinates
+     * along u and v (inclusive by a relative 1e-12, so that quads sharing
+     * an edge leave no gap). */
+    double dn = sh_dot(d, pr->axis);
+    if (dn == 0) return 0;
+    double t = sh_dot(sh_sub(s->corner, o), pr->axis) / dn;
+    if (!(t > tnear && t < best)) return 0;
+    sh_vec3 x = sh_sub(sh_madd(o, d, t), s->corner);
+    double xu = sh_dot(x, s->u), xv = sh_dot(x, s->v);
+    double a = (xu * pr->vv - xv * pr->uv) / pr->det;
+    double b = (xv * pr->uu - xu * pr->uv) / pr->det;
+    const double tol = 1e-12;
+    if (a < -tol || a > 1 + tol || b < -tol || b > 1 + tol) return 0;
+    best = t;
+    found = 1;
+    *n_out = pr->axis;
   } else { /* cylinder */
     sh_vec3 oc = sh_sub(o, s->base);
     double op = sh_dot(oc, pr->axis), dp = sh_dot(d, pr->axis);
@@ -251,7 +270,15 @@ static sh_status prim_init(sh_rt *rt, sh__prim *pr, const sh_shape *s,
   pr->rt = rt;
   sh_mat4 id = sh_mat4_identity();
   pr->identity = memcmp(&s->xform, &id, sizeof id) == 0;
-  if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER) {
+  if (s->type == SH_SHAPE_QUAD) {
+    pr->axis = sh_normalize(sh_cross(s->u, s->v));
+    pr->uu = sh_dot(s->u, s->u);
+    pr->uv = sh_dot(s->u, s->v);
+    pr->vv = sh_dot(s->v, s->v);
+    pr->det = pr->uu * pr->vv - pr->uv * pr->uv;
+  }
+  if (s->type == SH_SHAPE_SPHERE || s->type == SH_SHAPE_CYLINDER ||
+      (s->type == SH_SHAPE_QUAD && pr->det > 0 && isfinite(pr->axis.x))) {
     pr->analytic = 1;
     sh_vec3 lo, hi;
     sh_shape_bounds(s, &lo, &hi);

@@ -1,7 +1,9 @@
 /* Ray queries against the scene's surfaces through Embree.
  *
- * Spheres and cylinders keep their exact form (Embree user geometry, in
- * object space under their transform); every other shape is triangles. One
+ * Spheres, cylinders and quads keep their exact form (Embree user
+ * geometry, intersected in double precision in object space under their
+ * transform: a ground quad as large as a planet is then exact near an eye
+ * a metre above it); every other shape is triangles. One
  * Embree device with one error callback and one Embree scene, in which
  * every shape carries its class (below) as geometry mask, so that a query
  * can look at some classes only. All calls on a built sh_rt are safe from
