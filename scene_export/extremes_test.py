@@ -21,7 +21,9 @@ shaft, the camera 5000 units away at 0.055 degrees) and its variants, at
 `cycles`: the Blender export rendered by Cycles: the camera 5000 units
 away within 3% of the reference (256 samples; was 6.4%, 7% dark: the
 spot's profile card and the medium box's margin followed a bounding sphere
-that held the camera); the camera 5 units away scaled by 1e-9 and by 1e6
+that held the camera), and 5e7 units away (was 170%: Blender's single
+precision rotation of the camera; the export now turns Blender's axes to
+the camera's, se_scale.h; no note then, a note for a camera off the axes); the camera 5 units away scaled by 1e-9 and by 1e6
 and moved by (1e7, 0, -1e7): the image of the plain scene within 0.1% (16
 samples, the same seed; with --scale none, as before the exporter chose a
 frame, Cycles' single precision held the scene in its own units and
@@ -202,9 +204,11 @@ def check_eevee(build, work):
 
 
 def check_cycles(build, work):
-    ok = far_against_reference(
-        build, work, lambda name, scene: blender_render(build, work, name, scene), 5000.0,
-        0.03, "Cycles")
+    ok = True
+    for distance in (5000.0, 5e7):
+        ok &= far_against_reference(
+            build, work, lambda name, scene: blender_render(build, work, name, scene),
+            distance, 0.03, "Cycles")
     frames = {"scale 1e-9": (1e9, [0, 0, 0]), "scale 1e6": (1e-6, [0, 0, 0]),
               "moved by (1e7, 0, -1e7)": (1.0, [1e7, 2, -1e7])}
     ok &= same_as_plain(
@@ -222,6 +226,13 @@ def check_cycles(build, work):
                "the export of a scene scaled by 1e-9 with --scale none warns")
     ok &= flag(not warns(build, work, "far", variant(5000.0)),
                "the export of the far camera does not warn")
+    ok &= flag(not warns(build, work, "far", variant(5e7)),
+               "the export of the camera 5e7 away (1.4e7 radii, looking along -z) does "
+               "not warn")
+    turned = variant(5e7)
+    turned["camera"]["look_at"][0] += 1.0
+    ok &= flag(warns(build, work, "turned", turned),
+               "the export of the camera 5e7 away looking off the axes warns")
     return ok
 
 

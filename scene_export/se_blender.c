@@ -69,13 +69,18 @@ static double split_colour(sh_vec3 c, sh_vec3 *unit) {
  * light (the light's distance from the ray, from |L - P|^2 - (D.(L - P))^2)
  * cancelled, 6.4% off (7% dark). Nothing is drawn nearer than the scene's
  * content (shapes, lights, medium), so a camera outside it starts its rays
- * just before it; clip_end reaches past it. */
+ * just before it; clip_end reaches past it. Both keep a margin of 2^-20
+ * of the camera's distance from the frame's origin and the content's depth:
+ * Cycles computes the start, camera + clip_start D, in single precision
+ * (spacing 2^-23 of those), and from a camera 1.7e8 units away a start 3.8
+ * units before the content's centre landed in it (2.4% of the light). */
 static void clipping(const blend *b, const sh_camera_frame *f, double *start,
                      double *end) {
   double r = b->radius;
   double depth = sh_dot(sh_sub(b->center, f->origin), f->forward);
-  *start = se_frame_length(&b->frame, fmax(1e-4 * r, depth - 1.1 * r));
-  *end = se_frame_length(&b->frame, fmax(100.0 * r, depth + 1.1 * r));
+  double margin = ldexp(sh_length(sh_sub(f->origin, b->frame.origin)) + fabs(depth), -20);
+  *start = se_frame_length(&b->frame, fmax(1e-4 * r, depth - 1.1 * r - margin));
+  *end = se_frame_length(&b->frame, fmax(100.0 * r, depth + 1.1 * r + margin));
   /* Under a planet's air the content surrounds the camera: start just
    * short of the nearest surface, the ground or the top. */
   const sh_medium *m = &b->scene->medium;
@@ -540,9 +545,15 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   char *frame_text = se_scale_describe(&b.frame);
   char *comment = frame_text ? se_printf_alloc(
       "Data for the fixed script next to this file (scene_export --to blender). "
-      "Blender coordinates (Z up), metres, radians, watts; from the scene: %s "
+      "Blender coordinates (Z up, or as the frame's axes say), metres, radians, "
+      "watts; from the scene: %s "
       "(docs/scene_export.md, \"Precision\").", frame_text) : NULL;
   free(frame_text);
+  /* The frame's axes as the scene's: Blender's X is the scene's "+x", ... */
+  char axis_names[3][3];
+  for (int i = 0; i < 3; i++)
+    snprintf(axis_names[i], sizeof axis_names[i], "%c%c", b.frame.sign[i] < 0 ? '-' : '+',
+             "xyz"[b.frame.axis[i]]);
   if (!comment) {
     free(name);
     return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
@@ -561,10 +572,11 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
   for (int i = 0; st == SH_OK && i < scene->nshapes; i++) st = shape(&b, i, meshes, err);
   int samples = opt->quality == SE_QUALITY_FINAL ? 1024 : 64;
   json_t *root = json_pack(
-      "{s:s, s:i, s:s, s:{s:f, s:[fff]}, s:{s:i, s:i, s:i, s:i, s:i, s:I}, s:{s:o}, "
-      "s:o, s:o, s:o, s:o, s:o, s:o}",
+      "{s:s, s:i, s:s, s:{s:f, s:[fff], s:[sss]}, s:{s:i, s:i, s:i, s:i, s:i, s:I}, "
+      "s:{s:o}, s:o, s:o, s:o, s:o, s:o, s:o}",
       "format", "shafts-blender", "version", 1, "comment", comment, "frame", "scale",
       b.frame.scale, "origin", b.frame.origin.x, b.frame.origin.y, b.frame.origin.z,
+      "axes", axis_names[0], axis_names[1], axis_names[2],
       "render", "width", scene->camera.width, "height", scene->camera.height,
       "max_depth", scene->render.max_depth, "samples_cycles", samples, "samples_eevee",
       opt->quality == SE_QUALITY_FINAL ? 64 : 16, "seed", (json_int_t)scene->render.seed,

@@ -3,6 +3,8 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "sh_camera.h"
+
 #include "se_geom.h"
 #include "se_text.h"
 
@@ -50,6 +52,45 @@ se_frame se_scale_pov(const sh_scene *s, const se_options *opt, se_notes *notes)
  * origin, 0.6% with the camera 5e4 away, and failed beyond (black at
  * 1e-9, 120% at 1e6, 17% 1e6 from the origin, 3.8% with the camera 5e5
  * away). */
+/* The axis (0, 1, 2) along which unit vector v lies exactly, its sign in
+ * *sign; -1 if v is not exactly along an axis. */
+static int exact_axis(sh_vec3 v, double *sign) {
+  int axis = -1;
+  for (int k = 0; k < 3; k++) {
+    double x = sh_vget(v, k);
+    if (x == 1.0 || x == -1.0) {
+      axis = k;
+      *sign = x;
+    } else if (x != 0.0) {
+      return -1;
+    }
+  }
+  return axis;
+}
+
+/* Blender's axes for a far camera whose right, up and back vectors lie
+ * exactly along scene axes: Blender's X, Y, Z are the camera's right, up
+ * and back, a proper rotation (the camera's is right-handed), so the
+ * camera's matrix is the identity. Blender keeps a camera's rotation in
+ * single precision (up to about 6e-8 radians off the rotation that turns
+ * its -Z to the scene's forward): from 1.4e5 scene radii the image was
+ * 3.8% off the reference, 56% at 1.4e6 radii; an identity rotation is
+ * exact (0.47% at 5 to 1.4e7 radii, validation/precision.py). Returns 0 and leaves f as it is otherwise. */
+static int camera_axes(const sh_scene *s, se_frame *f) {
+  sh_camera_frame cf;
+  sh_camera_frame_init(&s->camera, &cf);
+  sh_vec3 v[3] = {cf.right, cf.up, sh_neg(cf.forward)};
+  int axis[3];
+  double sign[3];
+  for (int i = 0; i < 3; i++)
+    if ((axis[i] = exact_axis(v[i], &sign[i])) < 0) return 0;
+  for (int i = 0; i < 3; i++) {
+    f->axis[i] = axis[i];
+    f->sign[i] = sign[i];
+  }
+  return 1;
+}
+
 se_frame se_scale_blender(const sh_scene *s, const se_options *opt, se_notes *notes) {
   sh_vec3 c;
   double r;
@@ -64,6 +105,12 @@ se_frame se_scale_blender(const sh_scene *s, const se_options *opt, se_notes *no
     sh_vec3 o = cam < r ? s->camera.position : c;
     if (sh_length(o) > 1e2 * r) f.origin = o;
   }
+  /* A far camera along the scene's axes turned to Blender's: where the
+   * medium is a box (height fog's and the atmosphere's nodes take Blender's
+   * Z as the scene's up). */
+  int aligned = opt->scale_mode != SE_SCALE_NONE && cam > 1e3 * r &&
+                (!s->medium.present || s->medium.type == SH_MEDIUM_HOMOGENEOUS) &&
+                camera_axes(s, &f);
   double rs = r * f.scale, far = sh_length(sh_sub(c, f.origin)) * f.scale;
   /* Only a forced scale, or none, can leave the range. */
   if (rs < 1e-6 || rs > 1e5 || far > 1e5 * rs) {
@@ -76,19 +123,34 @@ se_frame se_scale_blender(const sh_scene *s, const se_options *opt, se_notes *no
             "wrong image.",
             given, 2.0 * rs, far);
   }
-  if (cam > 3e4 * r)
+  if (cam > 3e4 * r && !aligned)
     se_note(notes,
-            "the camera is %g scene radii from the scene's content: Cycles and EEVEE "
-            "compute in single precision and hold about 3e4 radii, whatever the "
-            "scale and origin; expect a wrong image.",
+            "the camera is %g scene radii from the scene's content: Blender keeps its "
+            "rotation in single precision, which holds about 3e4 radii (a camera "
+            "looking along a scene axis, with its up along another, is exact in a "
+            "medium box or none); expect a wrong image.",
             cam / r);
   return f;
 }
 
+static int same_axes(const se_frame *a, const se_frame *b) {
+  for (int i = 0; i < 3; i++)
+    if (a->axis[i] != b->axis[i] || a->sign[i] != b->sign[i]) return 0;
+  return 1;
+}
+
 char *se_scale_describe(const se_frame *f) {
-  if (f->scale == 1.0 && f->origin.x == 0 && f->origin.y == 0 && f->origin.z == 0)
+  static const char *const names[3] = {"x", "y", "z"};
+  char axes[80] = "";
+  const se_frame blender = se_frame_blender(1.0, sh_v3s(0.0));
+  const se_frame pov = se_frame_pov(1.0, sh_v3s(0.0));
+  if (!same_axes(f, &blender) && !same_axes(f, &pov))
+    snprintf(axes, sizeof axes, "; the target's axes are the scene's %s%s, %s%s, %s%s",
+             f->sign[0] < 0 ? "-" : "+", names[f->axis[0]], f->sign[1] < 0 ? "-" : "+",
+             names[f->axis[1]], f->sign[2] < 0 ? "-" : "+", names[f->axis[2]]);
+  if (f->scale == 1.0 && f->origin.x == 0 && f->origin.y == 0 && f->origin.z == 0 && !*axes)
     return se_printf_alloc("the scene's own units and position");
   return se_printf_alloc("lengths multiplied by %g, the scene point (%.17g, %.17g, %.17g) "
-                         "at the origin",
-                         f->scale, f->origin.x, f->origin.y, f->origin.z);
+                         "at the origin%s",
+                         f->scale, f->origin.x, f->origin.y, f->origin.z, axes);
 }

@@ -19,14 +19,19 @@
  *   that r is 1 to 10 units: a scene 1 to 10 in radius scaled by a power
  *   of ten exports as the plain scene does), else 1; the camera at the
  *   origin if it lies inside the content sphere, else c, when that point is
- *   more than 100 r from the origin, else no move. A scene of ordinary size
- *   near its origin is exported as it is (the add-on imports it in its own
- *   units), and any other the same as it scaled and moved there.
- * What no scale or origin can fix is a note (the export is approximate;
- * --strict refuses it): for Blender a camera more than 3e4 r from c (single
- * precision cannot hold the ratio of the camera's distance to the scene's
- * size); and, with a forced scale or none, a frame outside the target's
- * range (for POV-Ray a scene less than 3 units in radius). */
+ *   more than 100 r from the origin, else no move; and for a camera more
+ *   than 1e3 r from c looking along a scene axis with its up along
+ *   another, in a medium box or none, Blender's axes turned to the
+ *   camera's (its rotation then the identity, which single precision holds
+ *   exactly). A scene of ordinary size near its origin is exported as it
+ *   is (the add-on imports it in its own units), and any other the same as
+ *   it scaled, moved and turned there.
+ * What the frame cannot fix is a note (the export is approximate;
+ * --strict refuses it): for Blender a camera more than 3e4 r from c that
+ * is not turned (single precision cannot hold its rotation at that ratio
+ * of the camera's distance to the scene's size); and, with a forced scale
+ * or none, a frame outside the target's range (for POV-Ray a scene less
+ * than 3 units in radius). */
 #ifndef SE_SCALE_H
 #define SE_SCALE_H
 

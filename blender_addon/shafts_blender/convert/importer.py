@@ -12,9 +12,11 @@ shadow-only cards, the medium as a box with a volume material.
 A scene beyond what Cycles' single precision holds in its own units and
 position (docs/scene_export.md, "Precision") is imported scaled and moved as
 the writer chose (scene_export/se_scale.h): the collection's custom
-properties shafts_scale and shafts_origin hold the frame (a scene point p
-is at (p - shafts_origin) * shafts_scale, axes as in coords.py), and the
-import's messages say so. A scene of ordinary size near its origin is
+properties shafts_scale, shafts_origin and shafts_axes hold the frame (a
+scene point p is at (p - shafts_origin) * shafts_scale, Blender's X, Y, Z
+along the scene axes shafts_axes names: "+x -z +y" as in coords.py but for
+a far camera looking along a scene axis, which is turned to look down -Z),
+and the import's messages say so. A scene of ordinary size near its origin is
 imported as it is.
 
 The library is shafts.py's (shafts.load_library: an explicit path, the
@@ -88,20 +90,29 @@ def import_scene(context, scene_path, lib_path=None):
         shutil.rmtree(work, ignore_errors=True)
 
 
+# Blender's X, Y, Z as the scene's axes in the writer's usual frame
+# (coords.py); a far camera along the scene's axes turns them.
+STANDARD_AXES = ["+x", "-z", "+y"]
+
+
 def frame_message(collection, data):
     """The writer's frame, kept on the collection; a message (in a list) if
     the scene was scaled or moved, else []."""
     frame = data.get("frame", {})
     scale = float(frame.get("scale", 1.0))
     origin = [float(x) for x in frame.get("origin", [0.0, 0.0, 0.0])]
+    axes = [str(a) for a in frame.get("axes", STANDARD_AXES)]
     collection["shafts_scale"] = scale
     collection["shafts_origin"] = origin
-    if scale == 1.0 and not any(origin):
+    collection["shafts_axes"] = " ".join(axes)
+    if scale == 1.0 and not any(origin) and axes == STANDARD_AXES:
         return []
+    turned = "" if axes == STANDARD_AXES else (
+        ", Blender's X, Y and Z along the scene's %s, %s and %s" % tuple(axes))
     return ["the scene is imported with lengths multiplied by %g and its point (%.17g, "
-            "%.17g, %.17g) at the origin, where Cycles' single precision holds it "
-            "(the same image; collection properties shafts_scale, shafts_origin)"
-            % (scale, origin[0], origin[1], origin[2])]
+            "%.17g, %.17g) at the origin%s, where Cycles' single precision holds it "
+            "(the same image; collection properties shafts_scale, shafts_origin, "
+            "shafts_axes)" % (scale, origin[0], origin[1], origin[2], turned)]
 
 
 def _remove(collection):
