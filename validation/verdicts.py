@@ -113,6 +113,14 @@ def features(data):
 # docs/validation.md ("Bias or noise"). Every matching entry names a row's
 # cause.
 CAUSES = [
+    # First, since it is the whole of their error there: the add-on's
+    # import converts the Blender scene back to a shafts scene and takes the
+    # exported height fog's density node graph as the Density input's own
+    # value (it warns): on valley_fog and its twin both engines' images are
+    # black but for 1e-4 (scale 0.000; the full run at 64x48).
+    (("addon_sweep", "addon_tracer"), "medium:height_fog",
+     "the add-on's import makes the height fog homogeneous (its warning: the "
+     "density graph is dropped)"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:nishita_hazy",
      "Nishita hazy phase exported as one HG lobe, g 0.4"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:nishita_murky",
@@ -142,13 +150,6 @@ CAUSES = [
      "its media's phases) and Cornette-Shanks as one HG lobe"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:cornette_shanks",
      "Cornette-Shanks phase exported as one HG lobe"),
-    # The add-on's import converts the Blender scene back to a shafts scene
-    # and takes the exported height fog's density node graph as the Density
-    # input's own value (it warns): on valley_fog both engines' images are
-    # black but for 1e-4 (scale 0.000; the quick run at 40x30).
-    (("addon_sweep", "addon_tracer"), "medium:height_fog",
-     "the add-on's import makes the height fog homogeneous (its warning: the "
-     "density graph is dropped)"),
     # gl_shafts' atmosphere: the optical depth from a table interpolated in
     # log tau (largest transmittance error 0.45%, gs_atmo_table_test) and
     # 3-point Gauss-Legendre per plane (docs/gl_shafts.md, "The atmosphere").
