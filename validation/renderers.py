@@ -365,9 +365,11 @@ EXPORTER = "scene_export/scene_export"
 
 
 # What scene_export says when it refuses a scene for a target (se_run.c:
-# "the blender exporter does not write a medium of type 'atmosphere' yet"),
-# also in the add-on's import, which runs the same writer.
-REFUSAL = re.compile(r"the \w+ exporter does not write [^;|]*")
+# "the blender exporter does not write a medium of type 'atmosphere' yet",
+# also in the add-on's import, which runs the same writer), and what the
+# exported Blender script says when it refuses the scene for one engine
+# (blender_build.py: "EEVEE does not render a planet's atmosphere (...)").
+REFUSAL = re.compile(r"the \w+ exporter does not write [^;|]*|\bEEVEE does not render [^;|]*")
 
 
 def _refused(error):
@@ -516,7 +518,10 @@ class _Blender(Adapter):
             cmd += ["-P", p]
         cmd += ["-P", py, "--", "--engine", engine, "--out", out,
                 "--samples", samples, "--seed", seed]
-        wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
+        try:
+            wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
+        except RunFailed as e:
+            raise _refused(e) from e
         if not out.exists():
             raise RunFailed("blender wrote no image")
         return {"image": out, "wall_seconds": wall,
