@@ -2,7 +2,8 @@
  * in process) on scenes whose medium is an atmosphere: the sky from 1 m
  * above a 6360 km planet at sunset, and the planet from 30 000 km with
  * the terminator in view; shapes casting the sun's shadows into the air
- * (casters, 96x72); a point light and a spot in the air (lamps, 96x72). `ctest -R
+ * (testdata/atmo_casters.json, 96x72); a point light and a spot in the air
+ * (testdata/atmo_lamps.json, 96x72). `ctest -R
  * atmo_reference -V` prints the errors; a failure writes the images and
  * their difference. Measured at 48x36, 256 samples per pixel for the
  * reference (its own noise included): sky 0.43%, space 0.14%; bound 1.5%.
@@ -10,6 +11,7 @@
  * 0.5%. */
 #include <stdio.h>
 
+#include "sh_test.h"
 #include "test_util.h"
 
 #define AIR                                                                  \
@@ -35,44 +37,8 @@ static const char *space =
     " \"lights\": [{\"type\": \"directional\", \"direction\": [-0.17101, -0.17365, -0.9698],"
     "  \"irradiance\": [20, 20, 20]}]}";
 
-/* Shapes in the air (gs_atmo_shapes.h): a row of pillars 3 km away and a
- * ball, the sun 6 degrees up behind them, seen from 50 m up: their
- * shadows in the air (the shafts between them) and on the ground, the
- * surfaces lit through the air. */
-static const char *casters =
-    "{\"format\": \"shafts-scene\", \"version\": 1,"
-    " \"camera\": {\"position\": [0, 0.05, 0], \"look_at\": [1, 0.08, 0],"
-    "  \"fov_y_deg\": 50, \"width\": 96, \"height\": 72}, " AIR ","
-    " \"lights\": [{\"type\": \"directional\", \"direction\": [-0.99, -0.1, 0.05],"
-    "  \"irradiance\": [20, 20, 20]}],"
-    " \"materials\": {\"rock\": {\"diffuse\": [0.3, 0.28, 0.25]}},"
-    " \"shapes\": ["
-    "  {\"type\": \"box\", \"min\": [3, -0.2, -1.6], \"max\": [3.15, 0.5, -1.3], \"material\": \"rock\"},"
-    "  {\"type\": \"box\", \"min\": [3, -0.2, -0.9], \"max\": [3.15, 0.6, -0.6], \"material\": \"rock\"},"
-    "  {\"type\": \"box\", \"min\": [3, -0.2, -0.2], \"max\": [3.15, 0.55, 0.1], \"material\": \"rock\"},"
-    "  {\"type\": \"box\", \"min\": [3, -0.2, 0.5], \"max\": [3.15, 0.65, 0.8], \"material\": \"rock\"},"
-    "  {\"type\": \"box\", \"min\": [3, -0.2, 1.2], \"max\": [3.15, 0.5, 1.5], \"material\": \"rock\"},"
-    "  {\"type\": \"sphere\", \"center\": [2, 0.4, 0.6], \"radius\": 0.12, \"material\": \"rock\"}]}";
-
-/* A point light and a spot in the air at night (no sun), 250 m below the
- * eye, a pillar in the point light's reach and a ball in the spot's cone
- * (gs_atmo_light.h): their glow, shafts and shadows in the air and on the
- * ground. */
-static const char *lamps =
-    "{\"format\": \"shafts-scene\", \"version\": 1,"
-    " \"camera\": {\"position\": [0, 0.25, 0], \"look_at\": [1, 0.05, 0],"
-    "  \"fov_y_deg\": 50, \"width\": 96, \"height\": 72}, " AIR ","
-    " \"lights\": [{\"type\": \"point\", \"position\": [0.6, 0.08, -0.15],"
-    "  \"intensity\": [0.6, 0.48, 0.36]},"
-    "  {\"type\": \"spot\", \"position\": [0.9, 0.3, 0.25], \"direction\": [0, -1, 0],"
-    "  \"outer_angle_deg\": 30, \"inner_angle_deg\": 20, \"intensity\": [1.5, 1.5, 1.8]}],"
-    " \"materials\": {\"rock\": {\"diffuse\": [0.3, 0.28, 0.25]}},"
-    " \"shapes\": ["
-    "  {\"type\": \"box\", \"min\": [0.55, -0.01, -0.08], \"max\": [0.58, 0.12, -0.05], \"material\": \"rock\"},"
-    "  {\"type\": \"sphere\", \"center\": [0.9, 0.12, 0.25], \"radius\": 0.03, \"material\": \"rock\"}]}";
-
-static void compare(const char *name, const char *json, double bound) {
-  sh_scene *s = tu_scene(json);
+/* Compares scene s (freed here) with the reference at 256 spp. */
+static void compare_scene(const char *name, sh_scene *s, double bound) {
   tu_check(s != NULL, name);
   if (!s) return;
   sh_image gl = {0}, ref = {0};
@@ -85,10 +51,19 @@ static void compare(const char *name, const char *json, double bound) {
   sh_scene_free(s);
 }
 
+static void compare(const char *name, const char *json, double bound) {
+  compare_scene(name, tu_scene(json), bound);
+}
+
 int main(void) {
   compare("atmo_ref_sky", sky, 0.015);
   compare("atmo_ref_space", space, 0.015);
-  compare("atmo_ref_casters", casters, 0.015);
-  compare("atmo_ref_lamps", lamps, 0.005);
+  /* Shapes in the air (gs_atmo_shapes.h): pillars and a ball casting the
+   * sun's shadows into the air and on the ground. */
+  compare_scene("atmo_ref_casters", sh_test_load("gl_shafts/testdata/%s", "atmo_casters.json"),
+                0.015);
+  /* A point light and a spot in the air (gs_atmo_light.h). */
+  compare_scene("atmo_ref_lamps", sh_test_load("gl_shafts/testdata/%s", "atmo_lamps.json"),
+                0.005);
   return tu_failures ? 1 : 0;
 }

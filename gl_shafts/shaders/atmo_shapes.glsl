@@ -22,7 +22,7 @@
 #endif
 
 const int CASTER_MIN_SAMPLES = 4;
-const int CASTER_MAX_SAMPLES = 64;
+const int CASTER_MAX_SAMPLES = 16;
 
 // Where the pixel's ray ends on a surface (distance along the unit ray),
 // BIG where it does not (setup_ray sets it).
