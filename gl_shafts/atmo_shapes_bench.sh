@@ -17,20 +17,8 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=$root/build w=96 h=72 frames=5 spp=1024
-while [ $# -gt 0 ]; do
-  case $1 in
-    --build) build=$2; shift 2 ;;
-    --size) w=$2; h=$3; shift 3 ;;
-    --frames) frames=$2; shift 2 ;;
-    --ref-spp) spp=$2; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
-    *) echo "atmo_shapes_bench.sh: unknown argument '$1'" >&2; exit 2 ;;
-  esac
-done
-bench=$build/gl_shafts/gl_shafts_bench
-[ -x "$bench" ] || { echo "atmo_shapes_bench.sh: build first: $bench is missing" >&2; exit 2; }
-cache=$build/gl_shafts_refs
-mkdir -p "$cache"
+. "$here/bench_lib.sh"
+bench_setup atmo_shapes_bench.sh 2,16 "$@"
 dir=$build/atmo_shapes_bench
 mkdir -p "$dir"
 casters=$here/testdata/atmo_casters.json lamps=$here/testdata/atmo_lamps.json
@@ -38,16 +26,11 @@ bare=$dir/atmo_casters_bare.json
 python3 -c 'import json, sys
 s = json.load(open(sys.argv[1])); s["shapes"] = []; s["materials"] = {}
 json.dump(s, open(sys.argv[2], "w"), indent=1)' "$casters" "$bare"
-run() {
-  "$bench" --size "$w" "$h" --frames "$frames" --ref-spp "$spp" --cache "$cache" "$@"
-}
-echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
-     "$(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD)"
 echo
 echo "### ${w}x${h}, defaults: the casters, the same air without them, the lamps"
 echo
-run "$casters" "$bare" "$lamps"
+bench_run "$casters" "$bare" "$lamps"
 echo
 echo "### Planes (the casters) and angle steps (the lamps)"
 echo
-run --sweep-planes 4,8,16,32 "$casters" "$lamps"
+bench_run --sweep-planes 4,8,16,32 "$casters" "$lamps"

@@ -17,28 +17,12 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=$root/build frames=5 spp=1024
-while [ $# -gt 0 ]; do
-  case $1 in
-    --build) build=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --ref-spp) spp=$2; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0"; exit 0 ;;
-    *) echo "side_lit_bench.sh: unknown argument '$1'" >&2; exit 2 ;;
-  esac
-done
-bench=$build/gl_shafts/gl_shafts_bench
-[ -x "$bench" ] || { echo "side_lit_bench.sh: build first: $bench is missing" >&2; exit 2; }
-cache=$build/gl_shafts_refs
-mkdir -p "$cache"
-run() {
-  "$bench" --frames "$frames" --ref-spp "$spp" --cache "$cache" "$@"
-}
-echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
-     "$(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD)"
+. "$here/bench_lib.sh"
+bench_setup side_lit_bench.sh 2,15 "$@"
 echo
 echo "### The comb lit from the side, 96x72: planes"
 echo
-run --sweep-planes 4,8,32,128 "$here/testdata/side_comb.json"
+bench_run --sweep-planes 4,8,32,128 "$here/testdata/side_comb.json"
 # The valley lit from the side, in a directory of its own with a copy of
 # the heightfield (a scene names only files in its own tree).
 dir=$build/side_lit_bench
@@ -52,4 +36,4 @@ grep -q '0.8, -0.22' "$side" || { echo "side_lit_bench.sh: the side-lit valley k
 echo
 echo "### valley_fog lit from the side and mountains_sun, 160x120, default planes"
 echo
-run --size 160 120 "$side" "$root/scenes/mountains_sun.json"
+bench_run --size 160 120 "$side" "$root/scenes/mountains_sun.json"
