@@ -193,7 +193,8 @@ class Peers:
         m = compare(self.tool, ref["image"], runs[0]["image"])
         out = {"scene": scene.name, "target": target, "label": runs[0]["label"],
                "mean_rel": m["mean_rel"], "ratio": m["scale"], "rel_rms": m["rel_rms"],
-               "seconds": runs[0].get("wall_seconds")}
+               "seconds": runs[0].get("wall_seconds"),
+               "images": [str(ref["image"]), str(runs[0]["image"])]}
         if len(runs) > 1:
             # The two seeds' difference, relative to the first seed.
             out["noise"] = compare(self.tool, runs[0]["image"], runs[1]["image"])["mean_rel"]
@@ -270,12 +271,23 @@ def main(argv=None):
             r["kind"] = kind
             r["bound"] = bound_for(target, kind, r)
             r["pass"] = within(r, r["bound"])
+            if r["pass"] is False:
+                # The difference image (|image - reference| x 10, PNG) next
+                # to the cache, for the failure message.
+                diff = cache.root / ("diff_%s_%s.png" % (scene.name, target))
+                try:
+                    compare(peers.tool, r["images"][0], r["images"][1], diff=diff)
+                    r["diff_image"] = str(diff)
+                except CompareFailed as e:
+                    r["diff_image"] = "not written: %s" % e
             results.append(r)
             print("%-24s %-7s mean_rel %.4f ratio %.4f%s  bound %s  %s" % (
                 scene.name, target, r["mean_rel"], r["ratio"],
                 "  noise %.4f" % r["noise"] if "noise" in r else "",
                 "%.4f" % r["bound"]["mean_rel"] if r["bound"] else "-",
                 {True: "ok", False: "FAIL", None: "(reported)"}[r["pass"]]), flush=True)
+            if "diff_image" in r:
+                print("  difference image: %s" % r["diff_image"], flush=True)
     if args.markdown:
         Path(args.markdown).write_text(markdown(results))
     if args.json:
