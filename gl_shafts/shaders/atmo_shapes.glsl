@@ -12,8 +12,8 @@
 // of the map the part crosses (the map's coordinates are affine along the
 // ray), at least CASTER_MIN_SAMPLES and at most CASTER_MAX_SAMPLES, at
 // their centres (the midpoint rule): a lit-shadow-lit sequence within one
-// layer is followed at the map's own resolution, whatever the number of
-// planes.
+// layer is followed at the map's own resolution where the part crosses
+// fewer than CASTER_MAX_SAMPLES texels, and at that many steps otherwise.
 // Parameters (gs_atmo_shapes.c): u_eye (the eye in the anchored space),
 // u_shadow_res (the map's texels a side).
 
