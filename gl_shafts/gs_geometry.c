@@ -103,16 +103,88 @@ static double shape_error(const sh_shape *s, const gs__view *view) {
   return 1.0;
 }
 
+/* Grid lines for a quad much larger than the eye's height above it (a
+ * ground quad 2e7 m across with the eye 1 m up): the parameter t0 of the
+ * eye's foot (clamped to [0, 1]) and lines at t0 +- step 2^k, so that the
+ * cells grow geometrically away from the eye. Drawn as two triangles, such
+ * a quad's shadow map and surface passes interpolate depth and position
+ * across vertices 1e7 m away, and the lit ground near the eye came out
+ * 8.5% off at some scales and not at others (rounding). A tensor grid has
+ * no T-junctions. Writes at most QUAD_LINES values, sorted; returns how
+ * many. */
+enum { QUAD_LINES = 128 };
+static int quad_lines(double t0, double step, double *out) {
+  int n = 0;
+  out[n++] = 0.0;
+  t0 = fmin(fmax(t0, 0.0), 1.0);
+  double lo[QUAD_LINES / 2];
+  int nlo = 0;
+  for (double d = step; t0 - d > 0 && nlo < QUAD_LINES / 2 - 2; d *= 2) lo[nlo++] = t0 - d;
+  while (nlo > 0) out[n++] = lo[--nlo];
+  if (t0 > 0 && t0 < 1) out[n++] = t0;
+  for (double d = step; t0 + d < 1 && n < QUAD_LINES - 1; d *= 2) out[n++] = t0 + d;
+  out[n++] = 1.0;
+  return n;
+}
+
+/* A quad larger than 64 times the eye's height above its plane as a grid
+ * refined about the eye (quad_lines), in object space about oo; 0 (and
+ * nothing made) for a smaller one. */
+static int quad_grid(const sh_shape *s, sh_vec3 eye, sh_vec3 oo, sh_mesh *m) {
+  sh_vec3 e = sh_xform_point(&s->inv, eye), n = sh_cross(s->u, s->v);
+  double lu = sh_length(s->u), lv = sh_length(s->v), ln = sh_length(n);
+  if (!(ln > 0)) return 0;
+  sh_vec3 x = sh_sub(e, s->corner);
+  double h = fabs(sh_dot(x, n)) / ln, size = fmax(lu, lv);
+  if (!(size > 64 * h)) return 0;
+  h = fmax(h, 1e-9 * size);
+  double uu = lu * lu, vv = lv * lv, uv = sh_dot(s->u, s->v), det = uu * vv - uv * uv;
+  double xu = sh_dot(x, s->u), xv = sh_dot(x, s->v);
+  double a0 = (xu * vv - xv * uv) / det, b0 = (xv * uu - xu * uv) / det;
+  double la[QUAD_LINES], lb[QUAD_LINES];
+  int na = quad_lines(a0, h / lu, la), nb = quad_lines(b0, h / lv, lb);
+  m->nverts = na * nb;
+  m->ntris = 2 * (na - 1) * (nb - 1);
+  m->positions = malloc(sizeof(float) * 3 * (size_t)m->nverts);
+  m->indices = malloc(sizeof(unsigned) * 3 * (size_t)m->ntris);
+  if (!m->positions || !m->indices) {
+    free(m->positions);
+    free(m->indices);
+    memset(m, 0, sizeof *m);
+    return -1;
+  }
+  for (int j = 0; j < nb; j++)
+    for (int i = 0; i < na; i++) {
+      sh_vec3 p = sh_sub(sh_add(s->corner, sh_add(sh_scale(s->u, la[i]), sh_scale(s->v, lb[j]))), oo);
+      float *f = m->positions + 3 * (j * na + i);
+      f[0] = (float)p.x;
+      f[1] = (float)p.y;
+      f[2] = (float)p.z;
+    }
+  unsigned *t = m->indices;
+  for (int j = 0; j + 1 < nb; j++)
+    for (int i = 0; i + 1 < na; i++) {
+      unsigned p00 = (unsigned)(j * na + i), p10 = p00 + 1, p01 = p00 + (unsigned)na,
+               p11 = p01 + 1;
+      unsigned tri[6] = {p00, p10, p11, p00, p11, p01};
+      memcpy(t, tri, sizeof tri);
+      t += 6;
+    }
+  return 1;
+}
+
 /* Tessellates shape s with error e and appends its triangles to b in the
  * anchored space (gs_view.h), filling d (its range starting at b's end;
  * its bounds and centre stay in world space). */
 static sh_status shape_vertices(const sh_shape *s, double e, sh_vec3 anchor,
-                                gs__shape_draw *d, vbuf *b, long *triangles,
-                                sh_error *err) {
+                                sh_vec3 eye, gs__shape_draw *d, vbuf *b,
+                                long *triangles, sh_error *err) {
   sh_mesh m = {0};
   /* About the anchor, so that the float vertices keep their precision. */
   sh_vec3 oo = sh_xform_point(&s->inv, anchor);
-  sh_status st = sh_mesh_tessellate_about(s, e, oo, &m, err);
+  int grid = s->type == SH_SHAPE_QUAD ? quad_grid(s, eye, oo, &m) : 0;
+  if (grid < 0) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  sh_status st = grid ? SH_OK : sh_mesh_tessellate_about(s, e, oo, &m, err);
   if (st != SH_OK) return st;
   d->error = e;
   d->xform = s->xform;
@@ -173,8 +245,8 @@ sh_status gs__geometry_build(const sh_scene *scene, const gs__view *view,
   sh_status st = SH_OK;
   for (int i = 0; i < scene->nshapes && st == SH_OK; i++) {
     const sh_shape *s = &scene->shapes[i];
-    st = shape_vertices(s, shape_error(s, view), view->anchor, &g->shape[i], &b,
-                        &g->triangles, err);
+    st = shape_vertices(s, shape_error(s, view), view->anchor, view->frame.origin,
+                        &g->shape[i], &b, &g->triangles, err);
   }
   g->nshapes = scene->nshapes;
   g->nverts = (int)b.n;
@@ -218,7 +290,7 @@ sh_status gs__geometry_update(const sh_scene *scene, const gs__view *view,
     gs__shape_draw nd = *d;
     long tris = 0;
     b.n = 0;
-    st = shape_vertices(s, e, view->anchor, &nd, &b, &tris, err);
+    st = shape_vertices(s, e, view->anchor, view->frame.origin, &nd, &b, &tris, err);
     if (st != SH_OK) break;
     /* Another tessellation may have another vertex count: then the whole
      * buffer is built again. */
