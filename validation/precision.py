@@ -52,13 +52,19 @@ OFFSETS = [1e3, 1e6, 1e7, 1e8, 1e9]
 R_PLANET = 6360e3
 
 
-def planet_ground(w, h, quad=False):
+def planet_ground(w, h, quad=False, sun=False):
     """gl_shafts/planet_test.c's ground scene; with quad, the ground a
-    flat quad 2e7 m across at y = 0 instead of the sphere."""
+    flat quad 2e7 m across at y = 0 instead of the sphere; with sun, a
+    directional sun instead of the spot (its shadow map over a planet)."""
     ground = ({"type": "quad", "material": "ground", "corner": [-1e7, 0, 1e7],
                "u": [2e7, 0, 0], "v": [0, 0, -2e7]} if quad else
               {"type": "sphere", "material": "ground", "center": [0, -R_PLANET, 0],
                "radius": R_PLANET})
+    lights = ([{"type": "directional", "direction": [0.3, -1, 0.2], "irradiance": [1, 1, 1]}]
+              if sun else
+              [{"type": "spot", "position": [0, 30, -60], "direction": [0, -1, 0],
+                "intensity": [3000] * 3, "outer_angle_deg": 30,
+                "inner_angle_deg": 20, "exponent": 1}])
     return {
         "format": "shafts-scene", "version": 1,
         "camera": {"position": [0, 1, 0], "look_at": [0, 3, -60], "fov_y_deg": 50,
@@ -66,9 +72,7 @@ def planet_ground(w, h, quad=False):
         "medium": {"sigma_s": [0.02] * 3, "sigma_a": [0.002] * 3,
                    "phase": {"type": "henyey_greenstein", "g": 0.3},
                    "bounds": {"min": [-100, -1, -200], "max": [100, 40, 5]}},
-        "lights": [{"type": "spot", "position": [0, 30, -60], "direction": [0, -1, 0],
-                    "intensity": [3000] * 3, "outer_angle_deg": 30,
-                    "inner_angle_deg": 20, "exponent": 1}],
+        "lights": lights,
         "materials": {"ground": {"diffuse": [0.3] * 3}, "box": {"diffuse": [0.5, 0.4, 0.3]}},
         "shapes": [ground, {"type": "box", "material": "box", "min": [-3, 12, -63],
                             "max": [3, 14, -57]}],
@@ -194,6 +198,7 @@ def main(argv=None):
             print("|---" * (len(cols) + 2) + "|")
             scenes = [("eye 1 m above a 6360 km sphere", planet_ground(w, h)),
                       ("eye 1 m above a quad 2e7 m across", planet_ground(w, h, quad=True)),
+                      ("the same under a directional sun", planet_ground(w, h, sun=True)),
                       ("the planet from 30,000 km", planet_space(w, h))]
             for title, scene in scenes:
                 ref = reference(scene)
