@@ -104,7 +104,9 @@ int sh_rt_occluded(const sh_rt *rt, sh_vec3 o, sh_vec3 d, double tmax,
 /* Closest hits of n rays at once through Embree's stream interface
  * (rtcIntersect1M), faster for coherent rays such as a row of camera rays.
  * Writes each ray's hit distance (INFINITY for a miss) to t[i] and its
- * shape (-1 for a miss) to shape[i]. */
+ * shape (-1 for a miss) to shape[i]. The distance is Embree's, in single
+ * precision in its frame, not refined as sh_rt_intersect's is: for
+ * counting and timing rays (lmm_bench), not for placing points. */
 void sh_rt_intersect_stream(const sh_rt *rt, int n, const sh_vec3 *o,
                             const sh_vec3 *d, double *t, int *shape,
                             int coherent, sh_rt_counters *c);
