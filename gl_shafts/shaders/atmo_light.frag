@@ -31,7 +31,13 @@ void main() {
   Setup s = setup_ray(frag_pos());
   setup_tau(s);
   Ray ry = s.ry;
-  float tend = min(s.tend, g_tsurf);
+  // Where the ray meets the ground (BIG if it does not; from space the
+  // near side of the ground's sphere), and what it ends on.
+  float tg = s.ground ? s.tend : BIG;
+#if EYE_OUTSIDE
+  tg = s.ground ? s.tp - sqrt(max((u_rg - s.b) * (u_rg + s.b), 0.0)) : BIG;
+#endif
+  float tend = min(min(s.tend, tg), g_tsurf);
   vec2 span = medium_clip(u_eye, ry.d, 0.0, tend);
   vec3 L = vec3(0.0);
   vec3 v = u_lpos - u_eye;
@@ -57,14 +63,14 @@ void main() {
     L *= half_len / h;
   }
   // The ground where the ray ends on it: Lambert, lit through the air.
-  if (s.ground && s.tend < g_tsurf) {
-    vec3 q = u_eye + s.tend * ry.d, wi;
+  if (tg < g_tsurf) {
+    vec3 q = u_eye + tg * ry.d, wi;
     vec3 e = light_at(q, wi);
     vec3 n = normalize(q - u_atmo_c);
     vec3 tol = u_lpos - q;
     float cosl = dot(n, wi);
     if (cosl > 0.0) {
-      Pt p = point_at(ry, s.tend);
+      Pt p = point_at(ry, tg);
       L += u_albedo / PI * e * (cosl / max(dot(tol, tol), 1e-30)) *
            exp(-max(EYE_TAU(p), vec3(0.0)));
     }
