@@ -84,8 +84,18 @@ static void clipping(const blend *b, const sh_camera_frame *f, double *start,
   /* Under a planet's air the content surrounds the camera: start just
    * short of the nearest surface, the ground or the top. */
   const sh_medium *m = &b->scene->medium;
-  if (m->present && m->type == SH_MEDIUM_ATMOSPHERE)
-    *start = fmin(*start, se_frame_length(&b->frame, se_blender_atmo_clip_start(b->scene)));
+  if (m->present && m->type == SH_MEDIUM_ATMOSPHERE) {
+    double atmo = se_frame_length(&b->frame, se_blender_atmo_clip_start(b->scene));
+    /* Blender's clip start is at least 1e-6 units: beyond a hundredth of
+     * the camera's height (1e-3 is asked for) the ground near it is lost. */
+    if (atmo < 1e-8)
+      se_note(b->notes,
+              "the camera is %g units above the ground or below the top in Blender's "
+              "frame, and Blender's clip start is at least 1e-6 units: what lies "
+              "nearer the camera than that is not drawn (choose a larger --scale).",
+              1e3 * atmo);
+    *start = fmin(*start, fmax(atmo, 1e-6));
+  }
 }
 
 static json_t *camera(blend *b) {

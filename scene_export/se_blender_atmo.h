@@ -28,10 +28,9 @@
  * cross the shell's longest chord in such steps.
  *
  * Lengths and coefficients go through the export's frame (se_frame.h,
- * se_scale.h), which puts the Earth in units of 10^4 km; there the sky
- * agrees with the reference, and in the scene's kilometres (--scale 1) it
- * came out 8% dark for a cause not found (docs/scene_export.md, Blender,
- * Atmosphere). */
+ * se_scale.h: the air 10 to 100 units thick, kilometres for the Earth, so
+ * that Blender's smallest clip start, 1e-6 units, stays below the camera's
+ * height). */
 #ifndef SE_BLENDER_ATMO_H
 #define SE_BLENDER_ATMO_H
 

@@ -100,6 +100,13 @@ se_frame se_scale_blender(const sh_scene *s, const se_options *opt, se_notes *no
   if (opt->scale_mode != SE_SCALE_NONE) {
     if (opt->scale_mode == SE_SCALE_FIXED)
       f.scale = opt->scale;
+    else if (s->medium.present && s->medium.type == SH_MEDIUM_ATMOSPHERE)
+      /* An atmosphere: the air's thickness 10 to 100 units (kilometres for
+       * the Earth), as for POV-Ray: Blender's clip start is at least 1e-6
+       * units, and the content rule (10^4 km a unit for the Earth) made that
+       * 10 m, clipping the ground away below an eye 1 m up. */
+      f.scale = pow(10.0, -floor(log10((s->medium.atmo.top_radius -
+                                        s->medium.atmo.ground_radius) / 10.0)));
     else if (r < 1e-2 || r > 1e2)
       f.scale = pow(10.0, -floor(log10(r)));
     sh_vec3 o = cam < r ? s->camera.position : c;

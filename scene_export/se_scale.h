@@ -17,7 +17,9 @@
  *   1e-6 to 1e5 units in radius and 1e5 radii from the origin, measured):
  *   lengths times 10^-floor(log10 r) when r lies outside [1e-2, 1e2] (so
  *   that r is 1 to 10 units: a scene 1 to 10 in radius scaled by a power
- *   of ten exports as the plain scene does), else 1; the camera at the
+ *   of ten exports as the plain scene does), else 1 (for an atmosphere:
+ *   the power of ten that makes the air 10 to 100 units thick, since
+ *   Blender's clip start is at least 1e-6 units); the camera at the
  *   origin if it lies inside the content sphere, else c, when that point is
  *   more than 100 r from the origin, else no move; and for a camera more
  *   than 1e3 r from c looking along a scene axis with its up along
