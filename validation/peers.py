@@ -105,7 +105,8 @@ BOUNDS = {
 #  atmosphere_sunset_small in Cycles (24x18, the same sky): noise plus the
 #    phases (Rayleigh as two HG lobes, Cornette-Shanks as one): measured
 #    mean_rel 0.146 against a two-seed noise of 0.200, ratio 0.938 at 128
-#    spp (the sky lit by Rayleigh 7-9% dark, cause not found; the rows
+#    spp (the sky lit by Rayleigh 7-9% dark: coloured extinction, grey air
+#    agrees; docs/scene_export.md, "Non-uniform media"; the rows
 #    near the sun move the ratio between 0.92 and 1.02 from seed to seed).
 #  atmosphere_space_small (the Earth from 30,000 km at 24x18): POV-Ray
 #    measured mean_rel 0.0007, ratio 1.0003 (held like an exact scene);
