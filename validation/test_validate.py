@@ -395,20 +395,19 @@ class SweepTest(unittest.TestCase):
         self.assertEqual(mode_scale("scenes/teapot_spot.json", "quick", 0.5), 0.5)
 
     def test_refusal_is_not_exported(self):
-        e = renderers._refused(RunFailed(
-            "scene_export exited with status 2: scene_export: error: s.json:3:9: medium.type: "
-            "the blender exporter does not write a medium of type 'atmosphere' yet; "
-            "lmm_tracer renders it"))
-        self.assertIsInstance(e, NotExported)
-        self.assertEqual(str(e), "the blender exporter does not write a medium of type "
-                                 "'atmosphere' yet")
-        eevee = renderers._refused(RunFailed(
-            "xvfb-run exited with status 2: scene_export script: error: medium.atmosphere: "
-            "EEVEE does not render a planet's atmosphere (its froxel grid is too coarse); "
-            "render it with --engine cycles"))
-        self.assertIsInstance(eevee, NotExported)
-        self.assertEqual(str(eevee), "EEVEE does not render a planet's atmosphere (its froxel "
-                                     "grid is too coarse)")
+        # The exporter's refusal, and the exported script's for one engine.
+        for message, reason in (
+                ("scene_export exited with status 2: scene_export: error: s.json:3:9: "
+                 "medium.type: the blender exporter does not write a medium of type "
+                 "'atmosphere' yet; lmm_tracer renders it",
+                 "the blender exporter does not write a medium of type 'atmosphere' yet"),
+                ("xvfb-run exited with status 2: scene_export script: error: "
+                 "medium.atmosphere: EEVEE does not render a planet's atmosphere (its froxel "
+                 "grid is too coarse); render it with --engine cycles",
+                 "EEVEE does not render a planet's atmosphere (its froxel grid is too coarse)")):
+            e = renderers._refused(RunFailed(message))
+            self.assertIsInstance(e, NotExported)
+            self.assertEqual(str(e), reason)
         other = RunFailed("blender exited with status 1: segfault")
         self.assertIs(renderers._refused(other), other)
         with tempfile.TemporaryDirectory() as d:
