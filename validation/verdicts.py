@@ -155,9 +155,12 @@ CAUSES = [
     (("povray",), "phase:cornette_shanks", "Cornette-Shanks phase exported as one HG lobe"),
     # Cycles' atmosphere (b260569): the sky 5-10% dark in every channel,
     # with Rayleigh alone (ratio 0.938) and with Mie an exact HG lobe
-    # (0.893) too, a cause not found yet (docs/scene_export.md).
+    # (0.893) too; with grey coefficients 1.016 (c09a4fe), so likely
+    # Cycles 3.4 choosing the colour channel of its distance sampling once
+    # per path while the extinction differs per channel (docs/scene_export.md).
     (("cycles",), "medium:atmosphere",
-     "the sky 5-10% dark in Cycles' atmosphere (cause not found; docs/scene_export.md)"),
+     "the sky 5-10% dark in Cycles' atmosphere (likely its one colour channel of "
+     "distance sampling per path; docs/scene_export.md)"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phase:cornette_shanks",
      "Cornette-Shanks phase exported as one HG lobe"),
     # gl_shafts' atmosphere: the optical depth from a table interpolated in
