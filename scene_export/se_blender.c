@@ -11,6 +11,7 @@
 #include "se_jsontext.h"
 #include "se_cycles_phase.h"
 #include "se_frame.h"
+#include "se_json.h"
 #include "se_scale.h"
 #include "se_text.h"
 #include "sh_camera.h"
@@ -598,6 +599,11 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
                         se_blender_atmosphere(scene, &b.frame, materials, meshes, notes));
   else if (root && scene->medium.present)
     json_object_set_new(root, "medium", medium(&b));
+  /* The scene's own medium (its units and frame), which the add-on's
+   * medium properties take (blender_build.medium_properties): its import
+   * reads height fog and the atmosphere from them exactly. */
+  json_t *medium_data = root ? json_object_get(root, "medium") : NULL;
+  if (medium_data) json_object_set_new(medium_data, "scene", se_json_medium(&scene->medium));
   if (root) json_object_set_new(json_object_get(root, "world"), "sun_disks", sun_disks(&b));
   if (root) {
     /* The notes as sentences (a JSON string is data, so the punctuation

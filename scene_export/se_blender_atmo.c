@@ -100,10 +100,13 @@ json_t *se_blender_atmosphere(const sh_scene *scene, const se_frame *f,
                         json_pack("{s:s, s:o, s:o, s:o, s:f, s:o}", "label", "ground",
                                   "diffuse", rgb(a->ground_albedo), "mirror", rgb(zero),
                                   "transmit", rgb(zero), "ior", 1.0, "emission", rgb(zero)));
-  json_array_append_new(meshes, json_pack("{s:s, s:i, s:b, s:o, s:o}", "label", "ground",
+  /* atmosphere_ground: the add-on's import takes the atmosphere's exact
+   * ground sphere instead of this mesh (blender_build.py). */
+  json_array_append_new(meshes, json_pack("{s:s, s:i, s:b, s:b, s:o, s:o}", "label", "ground",
                                           "material",
                                           (int)json_array_size(materials) - 1, "smooth",
-                                          1, "vertices", gv, "triangles", gt));
+                                          1, "atmosphere_ground", 1, "vertices", gv,
+                                          "triangles", gt));
 
   /* The air's container: a uniform grid whose triangles (circumradius at
    * most 0.0274 of the radius) enclose the top sphere when its vertices lie

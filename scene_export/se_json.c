@@ -121,7 +121,7 @@ static json_t *atmosphere(const sh_atmosphere *a) {
   return o;
 }
 
-static json_t *medium(const sh_medium *m) {
+json_t *se_json_medium(const sh_medium *m) {
   if (m->type == SH_MEDIUM_ATMOSPHERE) return atmosphere(&m->atmo);
   json_t *phase = phase_object(&m->phase);
   json_t *o = json_pack("{s:o, s:o, s:o, s:{s:o, s:o}}", "sigma_s",
@@ -279,7 +279,7 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
                            "background", vec(s->background), "ambient",
                            vec(s->ambient));
   if (!root) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
-  if (s->medium.present) json_object_set_new(root, "medium", medium(&s->medium));
+  if (s->medium.present) json_object_set_new(root, "medium", se_json_medium(&s->medium));
   json_t *lights = json_array(), *materials = json_object(), *shapes = json_array();
   for (int i = 0; i < s->nlights; i++) json_array_append_new(lights, light(&f, &s->lights[i], i));
   for (int i = 0; i < s->nmaterials; i++)

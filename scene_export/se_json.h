@@ -12,6 +12,8 @@
 #ifndef SE_JSON_H
 #define SE_JSON_H
 
+#include <jansson.h>
+
 #include "se_export.h"
 
 #ifdef __cplusplus
@@ -21,6 +23,11 @@ extern "C" {
 /* Builds the normalised scene file in `out` (the exporters' build
  * signature, se_run.h; `opt` and `notes` are unused: the file is exact). */
 se_build se_json_build;
+
+/* The scene's medium as the format's medium object (every key explicit, in
+ * the scene's units and frame), or NULL when out of memory; the Blender
+ * writer stores it for the add-on's medium properties (se_blender.h). */
+json_t *se_json_medium(const sh_medium *m);
 
 #ifdef __cplusplus
 }

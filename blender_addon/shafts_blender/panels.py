@@ -113,7 +113,42 @@ class SHAFTS_PT_material(ShaftsPanel, bpy.types.Panel):
     GROUPS = ((None, None, ("casts_soft_shadows", "receives_soft_shadows")),)
 
 
-classes = (SHAFTS_PT_sweep, SHAFTS_PT_tracer, SHAFTS_PT_light, SHAFTS_PT_material)
+class SHAFTS_PT_medium(ShaftsPanel, bpy.types.Panel):
+    """The medium a volume material stands for (material.shafts_medium,
+    properties.ShaftsMediumSettings): only the chosen kind's settings are
+    drawn."""
+    bl_label = "Shafts Medium"
+    bl_context = "material"
+    DATA = "material"
+    SETTINGS = "shafts_medium"
+    KINDS = {
+        'NODES': (),
+        'HEIGHT_FOG': ((None, None, ("sigma_s", "sigma_a")),
+                       (None, None, ("base_height", "scale_height")),
+                       (None, None, ("phase",)),
+                       (None, lambda s: s.phase in ('HENYEY_GREENSTEIN', 'CORNETTE_SHANKS'),
+                        ("phase_g",))),
+        'ATMOSPHERE': ((None, None, ("center", "ground_radius", "top_radius",
+                                     "ground_albedo")),
+                       ("Rayleigh", None, ("rayleigh_sigma_s", "rayleigh_scale_height")),
+                       (None, None, ("use_mie",)),
+                       (None, lambda s: s.use_mie, ("mie_sigma_s", "mie_sigma_a",
+                                                    "mie_scale_height", "mie_phase")),
+                       (None, lambda s: s.use_mie and s.mie_phase in (
+                           'HENYEY_GREENSTEIN', 'CORNETTE_SHANKS'), ("mie_g",)),
+                       (None, None, ("use_ozone",)),
+                       (None, lambda s: s.use_ozone, ("ozone_sigma_a", "ozone_center_height",
+                                                      "ozone_width"))),
+    }
+
+    def draw(self, context):
+        settings = context.material.shafts_medium
+        draw_groups(self.layout, settings,
+                    ((None, None, ("kind",)),) + self.KINDS[settings.kind])
+
+
+classes = (SHAFTS_PT_sweep, SHAFTS_PT_tracer, SHAFTS_PT_light, SHAFTS_PT_material,
+           SHAFTS_PT_medium)
 
 
 def register():

@@ -5,12 +5,16 @@ Render settings of each engine live on the scene (``scene.shafts_sweep``,
 each light (``light.shafts``) and material (``material.shafts``), where the
 converter reads them into the scene's ``soft_shadows``,
 ``casts_soft_shadows`` and ``receives_soft_shadows`` keys
-(docs/scene-format.md). The engines turn the render settings into the
+(docs/scene-format.md); the kind of medium a volume material stands for
+(``material.shafts_medium``: the node graph's homogeneous medium, height fog
+or a planet's atmosphere, with their parameters) is read by convert/medium.py.
+The engines turn the render settings into the
 arguments of shafts.py (``sweep_options``, ``tracer_arguments``), so a value
 reaches the library in one place only.
 """
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, FloatVectorProperty,
+                       IntProperty, PointerProperty)
 
 
 class ShaftsSweepSettings(bpy.types.PropertyGroup):
@@ -123,6 +127,86 @@ class ShaftsMaterialSettings(bpy.types.PropertyGroup):
         description="Light meshes mode: shadows falling on this surface are softened")
 
 
+# The scene format's phase functions (docs/scene-format.md), numbered as
+# scene_export's Blender writer stores them (blender_build.MEDIUM_PHASES).
+PHASES = (('ISOTROPIC', "Isotropic", "", 0),
+          ('HENYEY_GREENSTEIN', "Henyey-Greenstein", "g from the Anisotropy below", 1),
+          ('NISHITA_HAZY', "Nishita Hazy", "Nishita et al. 1993: hazy air", 2),
+          ('NISHITA_MURKY', "Nishita Murky", "Nishita et al. 1993: murky air", 3),
+          ('RAYLEIGH', "Rayleigh", "", 4),
+          ('CORNETTE_SHANKS', "Cornette-Shanks", "g from the Anisotropy below", 5))
+
+
+def _rgb(name, default, description):
+    return FloatVectorProperty(name=name, size=3, default=default, min=0.0, precision=6,
+                               update=_tag, description=description)
+
+
+def _length(name, default, description, minimum=None):
+    kw = {} if minimum is None else {"min": minimum}
+    return FloatProperty(name=name, default=default, precision=4, update=_tag,
+                         description=description, **kw)
+
+
+class ShaftsMediumSettings(bpy.types.PropertyGroup):
+    """The medium a volume material stands for in our engines
+    (docs/scene-format.md, "Non-uniform media"; docs/blender.md). Lengths
+    and coefficients are in the scene's units: Blender's, unless the
+    object's collection holds scene_export's frame (shafts_scale,
+    shafts_origin, shafts_axes), which then maps them; points and heights
+    are in the scene's frame, Y up (Blender's Z). The defaults are the
+    Earth's values the scene format gives (per kilometre)."""
+    kind: EnumProperty(
+        name="Medium", update=_tag, default='NODES',
+        items=(('NODES', "Homogeneous", "The node graph's homogeneous medium in the "
+                "object's box (a linked Density is approximated)", 0),
+               ('HEIGHT_FOG', "Height Fog", "Density falling exponentially with height "
+                "in the object's box; coefficients, heights and phase below", 1),
+               ('ATMOSPHERE', "Atmosphere", "A planet's air: Rayleigh and Mie scattering "
+                "and ozone between two spheres, the ground an opaque sphere", 2)))
+    sigma_s: _rgb("Scattering", (0.05, 0.05, 0.05),
+                  "Height fog: sigma_s at the base height, per scene unit")
+    sigma_a: _rgb("Absorption", (0.0, 0.0, 0.0),
+                  "Height fog: sigma_a at the base height, per scene unit")
+    base_height: _length("Base Height", 0.0,
+                         "Height fog: the height (scene Y, Blender Z) of the base level")
+    scale_height: _length("Scale Height", 1.0, "Height fog: H, the coefficients are "
+                          "their base values times exp(-(y - base) / H)", 1e-9)
+    phase: EnumProperty(name="Phase", items=PHASES, default='ISOTROPIC', update=_tag)
+    phase_g: FloatProperty(name="Anisotropy", default=0.0, min=-0.999, max=0.999,
+                           update=_tag, description="g of the phase function")
+    center: FloatVectorProperty(
+        name="Centre", size=3, default=(0.0, -6360.0, 0.0), precision=4, update=_tag,
+        description="Atmosphere: the planet's centre in the scene's frame (Y up)")
+    ground_radius: _length("Ground Radius", 6360.0, "Atmosphere: R_g, the opaque ground "
+                           "sphere", 1e-9)
+    top_radius: _length("Top Radius", 6420.0, "Atmosphere: R_t, vacuum above", 1e-9)
+    ground_albedo: _rgb("Ground Albedo", (0.1, 0.1, 0.1), "Atmosphere: the ground's "
+                        "Lambert albedo")
+    rayleigh_sigma_s: _rgb("Rayleigh Scattering", (5.802e-3, 13.558e-3, 33.1e-3),
+                           "Atmosphere: Rayleigh sigma_s at the ground, per scene unit")
+    rayleigh_scale_height: _length("Rayleigh Scale Height", 8.0, "Atmosphere: H_R", 1e-9)
+    use_mie: BoolProperty(name="Mie", default=True, update=_tag,
+                          description="Atmosphere: aerosols (Mie scattering)")
+    mie_sigma_s: _rgb("Mie Scattering", (3.996e-3,) * 3,
+                      "Atmosphere: Mie sigma_s at the ground, per scene unit")
+    mie_sigma_a: _rgb("Mie Absorption", (0.444e-3,) * 3,
+                      "Atmosphere: Mie sigma_a at the ground, per scene unit")
+    mie_scale_height: _length("Mie Scale Height", 1.2, "Atmosphere: H_M", 1e-9)
+    mie_phase: EnumProperty(name="Mie Phase", items=PHASES, default='CORNETTE_SHANKS',
+                            update=_tag)
+    mie_g: FloatProperty(name="Mie g", default=0.8, min=-0.999, max=0.999, update=_tag,
+                         description="Atmosphere: g of the Mie phase function")
+    use_ozone: BoolProperty(name="Ozone", default=True, update=_tag,
+                            description="Atmosphere: an absorbing ozone layer")
+    ozone_sigma_a: _rgb("Ozone Absorption", (0.650e-3, 1.881e-3, 0.085e-3),
+                        "Atmosphere: the ozone's sigma_a at its centre, per scene unit")
+    ozone_center_height: _length("Ozone Height", 25.0, "Atmosphere: the height of the "
+                                 "ozone layer's centre")
+    ozone_width: _length("Ozone Width", 30.0, "Atmosphere: the ozone layer's width (a "
+                         "tent of density)", 1e-9)
+
+
 def sweep_options(settings):
     """The gs_options fields (a dict for shafts.SweepRenderer) of a scene's
     ShaftsSweepSettings. Planes, Shadow Map and Light Map at 0 mean "the
@@ -167,7 +251,7 @@ def tracer_arguments(settings, spp=None):
 
 
 classes = (ShaftsSweepSettings, ShaftsTracerSettings, ShaftsLightSettings,
-           ShaftsMaterialSettings)
+           ShaftsMaterialSettings, ShaftsMediumSettings)
 
 
 def register():
@@ -175,9 +259,11 @@ def register():
     bpy.types.Scene.shafts_tracer = PointerProperty(type=ShaftsTracerSettings)
     bpy.types.Light.shafts = PointerProperty(type=ShaftsLightSettings)
     bpy.types.Material.shafts = PointerProperty(type=ShaftsMaterialSettings)
+    bpy.types.Material.shafts_medium = PointerProperty(type=ShaftsMediumSettings)
 
 
 def unregister():
+    del bpy.types.Material.shafts_medium
     del bpy.types.Material.shafts
     del bpy.types.Light.shafts
     del bpy.types.Scene.shafts_tracer

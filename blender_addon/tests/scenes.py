@@ -22,7 +22,8 @@ def reset():
 
 
 artist_scene.reset = reset
-__all__ = ["spot_in_volume_box", "sun_through_window", "point_in_world_volume", "SCENES"]
+__all__ = ["spot_in_volume_box", "sun_through_window", "point_in_world_volume",
+           "sun_in_height_fog", "SCENES"]
 
 
 def sun_through_window():
@@ -58,6 +59,27 @@ def point_in_world_volume():
     ball = bpy.context.active_object
     ball.data.materials.append(diffuse_material("Ball", (0.8, 0.6, 0.2)))
     world_volume(scene, 0.04, anisotropy=0.3)
+    return scene
+
+
+def sun_in_height_fog():
+    """A sun over a floor in a box of height fog (base 0, H = 1 m,
+    Henyey-Greenstein g = 0.3) set by the material's Shafts Medium
+    properties, as an artist asks our engines for it; the Principled
+    Volume is what Cycles would render (homogeneous)."""
+    scene = reset()
+    camera(scene, (0, -12, 2), (90, 0, 0), lens=35)
+    light(scene, "Sun", "SUN", 3.0, (0, 0, 8), (60, 0, 30), angle=0.0)
+    floor = add_object(scene, "Floor", plane_mesh("Floor", 20.0))
+    floor.data.materials.append(diffuse_material("Floor", (0.5, 0.5, 0.5)))
+    fog = add_object(scene, "Fog", cube_mesh("Fog", 1.0), (0, 0, 2), scale=(8, 8, 4))
+    mat = volume_material("Fog", "principled", density=0.3, anisotropy=0.3)
+    fog.data.materials.append(mat)
+    m = mat.shafts_medium
+    m.kind = 'HEIGHT_FOG'
+    m.sigma_s, m.sigma_a = (0.3, 0.3, 0.3), (0.02, 0.02, 0.02)
+    m.base_height, m.scale_height = 0.0, 1.0
+    m.phase, m.phase_g = 'HENYEY_GREENSTEIN', 0.3
     return scene
 
 

@@ -669,6 +669,92 @@ def atmosphere_material(atmo):
     return mat
 
 
+# The add-on's medium properties (material.shafts_medium, the add-on's
+# properties.ShaftsMediumSettings) as raw ID properties, which the add-on
+# reads when it is installed and Blender keeps when it is not: the kind and
+# phase enums by number, every length and coefficient in the scene's own
+# units and frame, in double precision (the add-on maps them through the
+# collection's frame, shafts_scale, shafts_origin and shafts_axes).
+MEDIUM_KINDS = {"height_fog": 1, "atmosphere": 2}
+MEDIUM_PHASES = ("isotropic", "henyey_greenstein", "nishita_hazy", "nishita_murky",
+                 "rayleigh", "cornette_shanks")
+
+
+def _phase_number(phase, what):
+    if not isinstance(phase, dict) or phase.get("type") not in MEDIUM_PHASES:
+        raise DataError(what + ": expected a phase object of the scene format")
+    g = numbers([phase.get("g", 0.0)], 1, what + ".g")[0]
+    return MEDIUM_PHASES.index(phase["type"]), g
+
+
+def medium_properties(item):
+    """The raw properties for the scene's medium (data medium.scene, the
+    scene format's medium object), or None for a homogeneous one (the node
+    graph is exact for it)."""
+    m = item.get("scene")
+    if m is None:
+        return None
+    what = "medium.scene"
+    if not isinstance(m, dict):
+        raise DataError(what + ": expected an object")
+    kind = MEDIUM_KINDS.get(m.get("type"))
+    if kind is None:
+        return None
+    if kind == 1:
+        phase, g = _phase_number(m.get("phase"), what + ".phase")
+        return {"kind": 1, "sigma_s": numbers(m.get("sigma_s"), 3, what + ".sigma_s"),
+                "sigma_a": numbers(m.get("sigma_a"), 3, what + ".sigma_a"),
+                "base_height": numbers([m.get("base_height")], 1, what + ".base_height")[0],
+                "scale_height": numbers([m.get("scale_height")], 1, what + ".scale_height")[0],
+                "phase": phase, "phase_g": g}
+    r = m.get("rayleigh")
+    if not isinstance(r, dict):
+        raise DataError(what + ".rayleigh: expected an object")
+    p = {"kind": 2, "center": numbers(m.get("center"), 3, what + ".center"),
+         "ground_radius": numbers([m.get("ground_radius")], 1, what + ".ground_radius")[0],
+         "top_radius": numbers([m.get("top_radius")], 1, what + ".top_radius")[0],
+         "ground_albedo": numbers(m.get("ground_albedo"), 3, what + ".ground_albedo"),
+         "rayleigh_sigma_s": numbers(r.get("sigma_s"), 3, what + ".rayleigh.sigma_s"),
+         "rayleigh_scale_height": numbers([r.get("scale_height")], 1,
+                                          what + ".rayleigh.scale_height")[0],
+         "use_mie": "mie" in m, "use_ozone": "ozone" in m}
+    if "mie" in m:
+        mie = m["mie"]
+        if not isinstance(mie, dict):
+            raise DataError(what + ".mie: expected an object")
+        p["mie_phase"], p["mie_g"] = _phase_number(mie.get("phase"), what + ".mie.phase")
+        p["mie_sigma_s"] = numbers(mie.get("sigma_s"), 3, what + ".mie.sigma_s")
+        p["mie_sigma_a"] = numbers(mie.get("sigma_a", [0.0] * 3), 3, what + ".mie.sigma_a")
+        p["mie_scale_height"] = numbers([mie.get("scale_height")], 1,
+                                        what + ".mie.scale_height")[0]
+    if "ozone" in m:
+        o = m["ozone"]
+        if not isinstance(o, dict):
+            raise DataError(what + ".ozone: expected an object")
+        p["ozone_sigma_a"] = numbers(o.get("sigma_a"), 3, what + ".ozone.sigma_a")
+        p["ozone_center_height"] = numbers([o.get("center_height")], 1,
+                                           what + ".ozone.center_height")[0]
+        p["ozone_width"] = numbers([o.get("width")], 1, what + ".ozone.width")[0]
+    return p
+
+
+def set_frame_properties(collection, data):
+    """The writer's frame on the collection (shafts_scale, shafts_origin,
+    shafts_axes: a scene point p is at (p - origin) scale along the named
+    axes), which the add-on maps the medium's properties through."""
+    frame = data.get("frame", {})
+    if not isinstance(frame, dict):
+        raise DataError("frame: expected an object")
+    axes = frame.get("axes", ["+x", "-z", "+y"])
+    if (not isinstance(axes, list) or len(axes) != 3
+            or not all(a in ("+x", "-x", "+y", "-y", "+z", "-z") for a in axes)):
+        raise DataError("frame.axes: expected three signed axis names")
+    collection["shafts_scale"] = numbers([frame.get("scale", 1.0)], 1, "frame.scale")[0]
+    collection["shafts_origin"] = numbers(frame.get("origin", [0.0, 0.0, 0.0]), 3,
+                                          "frame.origin")
+    collection["shafts_axes"] = " ".join(axes)
+
+
 def box_mesh(lo, hi):
     v = [(lo[0] if i & 1 == 0 else hi[0], lo[1] if i & 2 == 0 else hi[1],
           lo[2] if i & 4 == 0 else hi[2]) for i in range(8)]
@@ -916,7 +1002,11 @@ def build_into(scene, collection, data, base_dir, engine):
             set_if(mesh, "use_auto_smooth", True)
             set_if(mesh, "auto_smooth_angle", math.radians(50.0))
         mesh.materials.append(materials[mi])
-        new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, collection)
+        obj = new_object("shape%d %s" % (k, str(item.get("label", ""))[:20]), mesh, collection)
+        if item.get("atmosphere_ground"):
+            # The add-on's import takes the atmosphere's exact ground sphere
+            # instead of this tessellation (convert/scene.py).
+            obj["shafts_atmosphere_ground"] = True
 
     for k, item in enumerate(data.get("cards", [])):
         what = "cards[%d]" % k
@@ -938,6 +1028,7 @@ def build_into(scene, collection, data, base_dir, engine):
         obj.visible_shadow = True
 
     medium_box = None
+    set_frame_properties(collection, data)
     if "medium" in data:
         item = data["medium"]
         lo = numbers(item.get("min"), 3, "medium.min")
@@ -948,6 +1039,9 @@ def build_into(scene, collection, data, base_dir, engine):
         else:
             mesh = box_mesh(lo, hi)
             mesh.materials.append(volume_material(item, engine))
+        props = medium_properties(item)
+        if props is not None:
+            mesh.materials[0]["shafts_medium"] = props
         new_object("medium", mesh, collection)
         medium_box = (lo, hi)
     return medium_box

@@ -102,9 +102,8 @@ def frame_message(collection, data):
     scale = float(frame.get("scale", 1.0))
     origin = [float(x) for x in frame.get("origin", [0.0, 0.0, 0.0])]
     axes = [str(a) for a in frame.get("axes", STANDARD_AXES)]
-    collection["shafts_scale"] = scale
-    collection["shafts_origin"] = origin
-    collection["shafts_axes"] = " ".join(axes)
+    # build_into set the collection's shafts_scale, shafts_origin and
+    # shafts_axes (blender_build.set_frame_properties).
     if scale == 1.0 and not any(origin) and axes == STANDARD_AXES:
         return []
     turned = "" if axes == STANDARD_AXES else (

@@ -29,6 +29,19 @@ and its absorption is sigma_a + sigma_s - n sigma_s so that the extinction
 stays Cycles' (scene_export's mixtures come back exactly but for the phase); emission and linked (textured) densities are
 approximated with warnings. g is clamped to +-0.999 as Cycles clamps it, and
 g = 0 is the isotropic phase.
+
+A material whose add-on properties (material.shafts_medium, properties.py)
+name height fog or an atmosphere is read from them instead, exactly
+(from_properties): the node graph, which Cycles renders, is then not read.
+Their numbers are in the scene's units and frame; when the object's
+collection (or the scene's) holds scene_export's frame (shafts_scale,
+shafts_origin, shafts_axes: a scene scaled and moved so that Cycles' single
+precision holds it, importer.py), they are mapped through it into Blender's
+frame, where the rest of the Blender scene is: points p -> (p - origin)
+scale along the named axes, lengths times scale, coefficients divided by
+it. scene_export's Blender writer stores the scene's own medium there in
+double precision (blender_build.set_medium_properties), and the raw values
+are read, so a round trip keeps every digit.
 """
 import numpy as np
 
@@ -210,3 +223,128 @@ def export_background(world, warnings):
                      "%.3g) is only seen by camera, mirror and refracted rays."
                      % (what, *c))
     return c
+
+
+# The scene format's phase types by the properties' enum numbers
+# (properties.PHASES, blender_build.MEDIUM_PHASES).
+PHASE_TYPES = ("isotropic", "henyey_greenstein", "nishita_hazy", "nishita_murky",
+               "rayleigh", "cornette_shanks")
+KINDS = ("NODES", "HEIGHT_FOG", "ATMOSPHERE")
+
+
+def kind(mat):
+    """'NODES', 'HEIGHT_FOG' or 'ATMOSPHERE': what the material's add-on
+    properties say ('NODES' without them or without the add-on)."""
+    settings = getattr(mat, "shafts_medium", None)
+    if settings is not None:
+        return settings.kind
+    raw = mat.get("shafts_medium") if mat is not None else None
+    k = raw.get("kind", 0) if raw is not None else 0
+    return KINDS[k] if isinstance(k, int) and 0 <= k < len(KINDS) else "NODES"
+
+
+def _value(settings, key):
+    """A property's stored value in double precision (the raw ID property
+    the writer or the UI set), else its RNA default."""
+    raw = settings.get(key) if hasattr(settings, "get") else None
+    if raw is None:
+        v = getattr(settings, key)
+    else:
+        v = raw
+    if hasattr(v, "__len__") and not isinstance(v, str):
+        return np.array([float(x) for x in v], dtype=np.float64)
+    return float(v) if not isinstance(v, str) else v
+
+
+def _phase(settings, type_key, g_key):
+    t = getattr(settings, type_key)
+    name = t.lower() if isinstance(t, str) else PHASE_TYPES[int(t)]
+    phase = {"type": name}
+    if name in ("henyey_greenstein", "cornette_shanks"):
+        phase["g"] = _value(settings, g_key)
+    return phase
+
+
+class Frame:
+    """scene_export's frame (importer.py): Blender point B = axes-mapped
+    (p - origin) * scale of a scene point p, then the add-on's scene point
+    coords.SCENE_FROM_BLENDER B."""
+
+    def __init__(self, scale=1.0, origin=(0.0, 0.0, 0.0), axes="+x -z +y"):
+        from . import coords
+        self.scale = float(scale)
+        self.origin = np.asarray(origin, dtype=np.float64)
+        m = np.zeros((3, 3))
+        for i, a in enumerate(str(axes).split()):
+            m[i, "xyz".index(a[1])] = -1.0 if a[0] == "-" else 1.0
+        self.rot = coords.SCENE_FROM_BLENDER @ m  # scene dir -> add-on scene dir
+
+    def point(self, p):
+        return self.rot @ ((np.asarray(p, dtype=np.float64) - self.origin) * self.scale)
+
+    def dir(self, d):
+        return self.rot @ np.asarray(d, dtype=np.float64)
+
+    def identity(self):
+        return self.scale == 1.0 and not self.origin.any() and (self.rot == np.eye(3)).all()
+
+
+def object_frame(obj, scene=None):
+    """The frame of the first of the object's collections (then the
+    scene's master collection) that holds shafts_scale, else the identity."""
+    owners = list(getattr(obj, "users_collection", ()) or ())
+    if scene is not None:
+        owners.append(scene.collection)
+    for c in owners:
+        if c is not None and c.get("shafts_scale") is not None:
+            return Frame(c.get("shafts_scale"), list(c.get("shafts_origin", (0.0, 0.0, 0.0))),
+                         c.get("shafts_axes", "+x -z +y"))
+    return Frame()
+
+
+def _rgb_list(v):
+    return [float(x) for x in v]
+
+
+def from_properties(mat, frame, lo, hi, what, warnings):
+    """The format's medium from the material's add-on properties (height
+    fog in the box lo-hi, scene frame of the add-on; an atmosphere), or None
+    when they name no such medium (then the node graph is read)."""
+    k = kind(mat)
+    if k == "NODES":
+        return None
+    settings = getattr(mat, "shafts_medium", None)
+    if settings is None:  # the add-on's classes not registered: raw values
+        return None
+    s = frame.scale
+    if k == "HEIGHT_FOG":
+        up = frame.dir([0.0, 1.0, 0.0])
+        if not np.allclose(up, [0.0, 1.0, 0.0], atol=1e-12):
+            warnings.add("%s is height fog in a frame whose Y is not Blender's Z (its "
+                         "collection's shafts_axes); the scene's height fog is vertical, "
+                         "so the node graph is read instead." % what)
+            return None
+        base = frame.point([0.0, _value(settings, "base_height"), 0.0])[1]
+        out = medium((_rgb_list(_value(settings, "sigma_s") / s),
+                      _rgb_list(_value(settings, "sigma_a") / s),
+                      _phase(settings, "phase", "phase_g")), lo, hi)
+        out.update({"type": "height_fog", "base_height": float(base),
+                    "scale_height": _value(settings, "scale_height") * s})
+        return out
+    out = {"type": "atmosphere",
+           "center": _rgb_list(frame.point(_value(settings, "center"))),
+           "ground_radius": _value(settings, "ground_radius") * s,
+           "top_radius": _value(settings, "top_radius") * s,
+           "ground_albedo": _rgb_list(_value(settings, "ground_albedo")),
+           "rayleigh": {"sigma_s": _rgb_list(_value(settings, "rayleigh_sigma_s") / s),
+                        "scale_height": _value(settings, "rayleigh_scale_height") * s}}
+    if settings.use_mie:
+        out["mie"] = {"sigma_s": _rgb_list(_value(settings, "mie_sigma_s") / s),
+                      "sigma_a": _rgb_list(_value(settings, "mie_sigma_a") / s),
+                      "scale_height": _value(settings, "mie_scale_height") * s,
+                      "phase": _phase(settings, "mie_phase", "mie_g")}
+    if settings.use_ozone:
+        out["ozone"] = {"sigma_a": _rgb_list(_value(settings, "ozone_sigma_a") / s),
+                        "center_height": _value(settings, "ozone_center_height") * s,
+                        "width": _value(settings, "ozone_width") * s}
+    return out

@@ -80,12 +80,27 @@ class _Collector:
         self.boxes = dict(boxes or {})  # mesh name -> object-space (lo, hi)
         self._parts_cache = {}
         self._with_meshes = with_meshes
+        self._scene = depsgraph.scene
+        # The tessellated ground scene_export's Blender writer builds under
+        # an atmosphere (marked shafts_atmosphere_ground): the atmosphere's
+        # own ground sphere replaces it, so it is read only without one.
+        grounds = []
         for obj, m in _instances(depsgraph):
-            try:
-                self._instance(obj, m)
-            except Exception as e:  # a Blender datum this code did not foresee
-                warnings.add("The object '%s' could not be read (%s: %s); it is left out."
-                             % (obj.name, type(e).__name__, e))
+            if obj.get("shafts_atmosphere_ground"):
+                grounds.append((obj, m))
+                continue
+            self._read(obj, m)
+        if not any(fixed is not None and fixed.get("type") == "atmosphere"
+                   for *_, fixed in self.media):
+            for obj, m in grounds:
+                self._read(obj, m)
+
+    def _read(self, obj, m):
+        try:
+            self._instance(obj, m)
+        except Exception as e:  # a Blender datum this code did not foresee
+            self.warnings.add("The object '%s' could not be read (%s: %s); it is left out."
+                              % (obj.name, type(e).__name__, e))
 
     def _instance(self, obj, m):
         warnings, with_meshes, parts_cache = self.warnings, self._with_meshes, self._parts_cache
@@ -155,17 +170,27 @@ class _Collector:
 
     def _medium_object(self, obj, mat, parts, t):
         what = "The volume of '%s' (material '%s')" % (obj.name, mat.name)
-        coeffs = md.coefficients(mt.surface_output(mat), what, self.warnings)
-        if coeffs is None:
-            return
         pos = np.concatenate([p.positions for p in parts])
         offs = np.cumsum([0] + [len(p.positions) for p in parts[:-1]])
         idx = np.concatenate([p.indices + o for p, o in zip(parts, offs)])
         exact, lo, hi = ms.is_box(pos, idx, t)
+        # The add-on's properties (height fog, atmosphere) when set, else
+        # the node graph's homogeneous medium.
+        fixed = md.from_properties(mat, md.object_frame(getattr(obj, "original", obj),
+                                                        self._scene),
+                                   lo, hi, what, self.warnings)
+        if fixed is not None and fixed["type"] == "atmosphere":
+            self.media.append((obj.name, None, None, None, fixed))
+            return
+        coeffs = None
+        if fixed is None:
+            coeffs = md.coefficients(mt.surface_output(mat), what, self.warnings)
+            if coeffs is None:
+                return
         if not exact:
             self.warnings.add("%s is not an axis-aligned box; the medium fills its "
                               "bounding box." % what)
-        self.media.append((obj.name, coeffs, lo, hi))
+        self.media.append((obj.name, coeffs, lo, hi, fixed))
 
 
 def _build(depsgraph, view, size, with_meshes, known=None, boxes=None):
@@ -186,14 +211,14 @@ def _build(depsgraph, view, size, with_meshes, known=None, boxes=None):
         world_coeffs = md.coefficients(md.world_output(scene.world),
                                        "The world '%s' volume" % scene.world.name, warnings)
     if c.media:
-        name, coeffs, lo, hi = c.media[0]
+        name, coeffs, lo, hi, fixed = c.media[0]
         for other in c.media[1:]:
             warnings.add("The volume of '%s' is left out: the scene has one medium, that "
                          "of '%s'." % (other[0], name))
         if world_coeffs is not None:
             warnings.add("The world's volume is left out: the scene has one medium, that "
                          "of '%s'." % name)
-        out["medium"] = md.medium(coeffs, lo, hi)
+        out["medium"] = fixed if fixed is not None else md.medium(coeffs, lo, hi)
         medium_key = ("object", name)
     elif world_coeffs is not None:
         lo, hi = md.world_box(c.points + [camera["position"]])
