@@ -55,6 +55,6 @@ sh_status sh_crop_check(const sh_crop *c, const sh_camera *cam,
       "%s: the crop x0 y0 x1 y1 = %d %d %d %d must lie in the %dx%d image "
       "(pixels [x0, x1) x [y0, y1), y down from the top)",
       why, c->x0, c->y0, c->x1, c->y1, cam->width, cam->height);
-  if (err) snprintf(err->path, sizeof err->path, "crop");
+  sh_error_set_key(err, "crop");
   return st;
 }

@@ -246,20 +246,22 @@ static int setter(const sh_cli_tool *t, const sh_cli_option *o,
   for (int k = 0; k < n && len < size; k++)
     len += (size_t)snprintf(value + len, size - len, "%s%s", k ? " " : "",
                             texts[k]);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (t->setter(t->setter_target, o->key, value, &err) != SH_OK) {
     sh_cli_error(t->name, "--%s: %s", o->name, err.message);
+    sh_error_clear(&err);
     return 0;
   }
   args->settings[args->nsettings++].key = o->key;
   return 1;
 }
 
-void sh_cli_option_names(const sh_cli_tool *t, const char *message,
-                         char *out, size_t size) {
+/* Writes sh_cli_option_names's text into out (NULL: only counts); returns
+ * its length. */
+static size_t option_names(const sh_cli_tool *t, const char *message,
+                           char *out) {
   size_t n = 0;
-  if (!size) return;
-  for (const char *p = message; *p && n + 1 < size;) {
+  for (const char *p = message; *p;) {
     size_t len = strspn(p, "abcdefghijklmnopqrstuvwxyz_");
     int word = len && (p == message || !strchr("._-", p[-1])) &&
                !(p[len] && strchr(".-", p[len]));
@@ -269,13 +271,24 @@ void sh_cli_option_names(const sh_cli_tool *t, const char *message,
           strlen(t->options[i].key) == len &&
           !strncmp(t->options[i].key, p, len))
         o = &t->options[i];
-    if (o)
-      n += (size_t)snprintf(out + n, size - n, "--%s", o->name);
-    else
-      n += (size_t)snprintf(out + n, size - n, "%.*s", len ? (int)len : 1, p);
+    const char *piece = o ? o->name : p;
+    size_t plen = o ? strlen(o->name) : len ? len : 1;
+    if (o) {
+      if (out) memcpy(out + n, "--", 2);
+      n += 2;
+    }
+    if (out) memcpy(out + n, piece, plen);
+    n += plen;
     p += len ? len : 1;
   }
-  out[n < size ? n : size - 1] = '\0';
+  if (out) out[n] = '\0';
+  return n;
+}
+
+char *sh_cli_option_names(const sh_cli_tool *t, const char *message) {
+  char *out = malloc(option_names(t, message, NULL) + 1);
+  if (out) option_names(t, message, out);
+  return out;
 }
 
 sh_status sh_cli_apply(const sh_cli_tool *t, const sh_cli_args *args,
@@ -549,13 +562,14 @@ int sh_cli_render_scene(const char *tool, sh_cli_render *r,
   const long *c = r->crop_args;
   if (c[0] < 0) return SH_EXIT_OK; /* no --crop */
   r->crop = (sh_crop){(int)c[0], (int)c[1], (int)c[2], (int)c[3]};
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   /* All zero would read as no crop: given, it is an empty one. */
   if (!sh_crop_given(&r->crop))
     sh_error_set(&err, SH_ERR_ARG, "the crop 0 0 0 0 is empty");
   else if (sh_crop_check(&r->crop, &(*scene)->camera, &err) == SH_OK)
     return SH_EXIT_OK;
   fprintf(stderr, "%s: error: --crop: %s\n", tool, err.message);
+  sh_error_clear(&err);
   sh_scene_free(*scene);
   *scene = NULL;
   return SH_EXIT_BAD_INPUT;
@@ -592,7 +606,7 @@ void sh_cli_render_free(sh_cli_render *r) {
 }
 
 int sh_cli_files(const char *tool, const sh_scene *scene, sh_outputs **set) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   *set = sh_outputs_new();
   if (!*set) {
     fprintf(stderr, "%s: error: out of memory\n", tool);
@@ -608,7 +622,7 @@ int sh_cli_files(const char *tool, const sh_scene *scene, sh_outputs **set) {
 
 int sh_cli_file_out(const char *tool, sh_outputs *set, const char *path,
                     const char *option) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_outputs_add(set, path, option, &err) == SH_OK) return SH_EXIT_OK;
   sh_cli_report(tool, &err);
   return SH_EXIT_BAD_INPUT;
@@ -650,7 +664,7 @@ void sh_cli_render_done(const char *tool, const sh_cli_render *r, int width,
 
 int sh_cli_load_scene(const char *tool, const char *path, int quiet,
                       sh_scene **scene) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   *scene = NULL;
   sh_status st = sh_scene_load(path, scene, &err);
   if (st != SH_OK) {
@@ -682,11 +696,13 @@ void sh_cli_resize(sh_scene *scene, long width, long height) {
   if (height > 0) cam->height = (int)(height < 1 ? 1 : height);
 }
 
-int sh_cli_report(const char *tool, const sh_error *err) {
-  char buf[2048];
-  sh_error_format(err, buf, sizeof buf);
-  fprintf(stderr, "%s: error: %s\n", tool, buf);
-  return sh_exit_code(err->status);
+int sh_cli_report(const char *tool, sh_error *err) {
+  char *text = sh_error_text(err);
+  fprintf(stderr, "%s: error: %s\n", tool, text ? text : sh_error_message(err));
+  free(text);
+  int rc = sh_exit_code(err->status);
+  sh_error_clear(err);
+  return rc;
 }
 
 int sh_exit_code(sh_status status) {

@@ -276,22 +276,23 @@ void sh_cli_resize(sh_scene *scene, long width, long height);
  * scene, image, mesh, argument errors), 1 for the rest. */
 int sh_exit_code(sh_status status);
 
-/* Copies `message` (a renderer's error about its options by name: "area_radius
- * needs mode whitted") into `out` with each word that is the key of one of
- * t's SETTER options replaced by the option ("--area-radius needs --mode
- * whitted"). Words in dotted or hyphenated names (render.scheme,
- * refract-both) are left alone. */
-void sh_cli_option_names(const sh_cli_tool *t, const char *message,
-                         char *out, size_t size);
+/* `message` (a renderer's error about its options by name: "area_radius
+ * needs mode whitted") with each word that is the key of one of t's SETTER
+ * options replaced by the option ("--area-radius needs --mode whitted"),
+ * on the heap (the caller frees it; NULL when out of memory). Words in
+ * dotted or hyphenated names (render.scheme, refract-both) are left
+ * alone. */
+char *sh_cli_option_names(const sh_cli_tool *t, const char *message);
 
 /* Prints "TOOL: error: " and the printf-formatted message on stderr, with
  * a newline: every tool's error messages have this one form. */
 void sh_cli_error(const char *tool, const char *format, ...)
     __attribute__((format(printf, 2, 3)));
 
-/* Prints "TOOL: error: <formatted error>" on stderr and returns the exit
- * status for it (sh_exit_code). */
-int sh_cli_report(const char *tool, const sh_error *err);
+/* Prints "TOOL: error: <formatted error>" on stderr (whole, however long
+ * its file, key and message), clears the report (sh_error_clear) and
+ * returns the exit status for it (sh_exit_code). */
+int sh_cli_report(const char *tool, sh_error *err);
 
 /* A flat statistics record written as a JSON object. Keys must be
  * identifiers; values numbers or strings. */

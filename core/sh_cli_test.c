@@ -141,10 +141,9 @@ int main(void) {
 
   /* A renderer's message about its options by key, in the tool's names:
    * words only, not parts of dotted or hyphenated names. */
-  char named[128];
-  sh_cli_option_names(&tool, "level needs render.level, level-x and level",
-                      named, sizeof named);
-  SH_CHECK(!strcmp(named, "--level needs render.level, level-x and --level"));
+  char *named = sh_cli_option_names(&tool, "level needs render.level, level-x and level");
+  SH_CHECK(named && !strcmp(named, "--level needs render.level, level-x and --level"));
+  free(named);
 
   SH_CHECK(sh_exit_code(SH_ERR_SCENE) == SH_EXIT_BAD_INPUT);
   SH_CHECK(sh_exit_code(SH_ERR_DEVICE) == SH_EXIT_FAILURE);

@@ -15,6 +15,7 @@
 
 #include "sh_file.h"
 #include "sh_json_locate.h"
+#include "sh_str.h"
 
 int sh__gltf_candidate(const char *path) {
   char ext[8];
@@ -36,18 +37,19 @@ static sh_status fail(const check *c, const sh__jseg *seg, int depth, const char
 #endif
     ;
 static sh_status fail(const check *c, const sh__jseg *seg, int depth, const char *fmt, ...) {
-  char what[SH_ERROR_MSG_MAX], at[256];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(what, sizeof what, fmt, ap);
+  char *what = sh__vprintf_alloc(fmt, ap);
   va_end(ap);
-  sh__json_format_path(seg, depth, at, sizeof at);
-  sh_error_set(c->err, SH_ERR_MESH, "cannot load mesh '%s'%s: %s: %s", c->path, c->where, at,
-               what);
+  char *at = sh__json_format_path(seg, depth);
+  sh_error_set(c->err, SH_ERR_MESH, "cannot load mesh '%s'%s: %s: %s", c->path, c->where,
+               at ? at : "", what ? what : "out of memory");
+  sh_error_set_file(c->err, c->path);
+  if (at) sh_error_set_key(c->err, "%s", at);
+  free(what);
+  free(at);
   if (c->err) {
     size_t off;
-    snprintf(c->err->file, sizeof c->err->file, "%s", c->path);
-    snprintf(c->err->path, sizeof c->err->path, "%s", at);
     if (sh__json_locate(c->text, c->len, seg, depth, 0, &off))
       sh__json_linecol(c->text, off, &c->err->line, &c->err->column);
   }
@@ -239,8 +241,8 @@ sh_status sh__gltf_check(const char *path, const char *data, size_t size, sh_err
   if (!root) {
     sh_error_set(err, SH_ERR_MESH, "cannot load mesh '%s'%s: line %d, column %d: %s", path,
                  c.where, je.line, je.column, je.text);
+    sh_error_set_file(err, path);
     if (err) {
-      snprintf(err->file, sizeof err->file, "%s", path);
       err->line = je.line;
       err->column = je.column;
     }

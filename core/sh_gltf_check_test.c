@@ -36,7 +36,7 @@ static const char *gltf(char *buf, size_t size, const char *sparse, const char *
 static void expect_at(const char *name, const char *text, int column, const char *key,
                       const char *want) {
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status s = sh_mesh_load(write_text(name, text), NULL, &m, &err);
   int ok = s == SH_ERR_MESH && strstr(err.file, name) && err.line == 1 &&
            err.column == column && !strcmp(err.path, key) && strstr(err.message, want);
@@ -45,6 +45,7 @@ static void expect_at(const char *name, const char *text, int column, const char
             err.line, err.column, err.path, s ? err.message : "", column, key, want);
   SH_CHECK(ok);
   SH_CHECK(m.positions == NULL);
+  sh_error_clear(&err);
 }
 
 /* The column of the first `needle` in text, 1-based. */
@@ -153,10 +154,11 @@ int main(void) {
             "duplicate object key");
   {
     sh_mesh m;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status s = sh_mesh_load(write_text("syntax.gltf", "{\n  \"nodes\": [,]\n}"), NULL, &m, &err);
     SH_CHECK(s == SH_ERR_MESH && err.line == 2 && strstr(err.message, "line 2"));
     if (s != SH_ERR_MESH || err.line != 2) fprintf(stderr, "syntax.gltf: %s\n", err.message);
+    sh_error_clear(&err);
   }
   SH_TEST_DONE();
 }

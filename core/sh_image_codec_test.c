@@ -34,7 +34,7 @@ static void check_same_as_oiio(const char *path, int want_native) {
   sh__decoded a, b;
   memset(&a, 0, sizeof a);
   memset(&b, 0, sizeof b);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status sa;
   int handled = 1;
   const char *ext = strrchr(path, '.');
@@ -69,6 +69,7 @@ static void check_same_as_oiio(const char *path, int want_native) {
   }
   free(a.values);
   free(b.values);
+  sh_error_clear(&err);
 }
 
 /* Runs oiiotool with `args` (file names relative to tmpdir). */
@@ -111,10 +112,11 @@ static void test_exr_variants(void) {
     check_same_as_oiio(path, v[i].native);
     /* And through the public call, whichever codec takes it. */
     sh_image img;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     SH_CHECK(sh_image_read(path, &img, &err) == SH_OK);
     sh_image_free(&img);
     remove(path);
+    sh_error_clear(&err);
   }
 }
 
@@ -218,7 +220,7 @@ static void test_png_variants(void) {
 /* Formats only OpenImageIO writes and reads: TIFF (8-bit sRGB, exact to
  * the byte) and Radiance HDR (float, RGBE: 1% steps). */
 static void test_plugin_formats(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image img, back;
   SH_CHECK(sh_image_alloc(&img, 5, 3, &err) == SH_OK);
   for (int i = 0; i < 5 * 3 * 3; i++)
@@ -246,6 +248,7 @@ static void test_plugin_formats(void) {
   SH_CHECK(sh_image_write(path, &img, 0.0, &err) == SH_ERR_IMAGE);
   SH_CHECK(access(path, F_OK) != 0);
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 /* sh_image_write_meta's attributes reach the header of every writer's
@@ -257,7 +260,7 @@ static void test_attributes(void) {
     return;
   }
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_image_alloc(&img, 4, 3, &err) == SH_OK);
   static const char *const attrs[] = {"Software", "codec_test 1.0",
                                       "shafts:settings", "{\"planes\":4}", NULL};
@@ -277,6 +280,7 @@ static void test_attributes(void) {
     remove(path);
   }
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 /* Whether this process has mapped a library whose name contains `name`. */
@@ -307,7 +311,7 @@ static int in_child(int (*fn)(void)) {
 /* EXR and PNG, read and written, do not load OpenImageIO. */
 static int child_no_oiio(void) {
   sh_image img, back;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   char path[512];
   if (sh_image_alloc(&img, 3, 2, &err) != SH_OK)
     return 10;
@@ -323,6 +327,7 @@ static int child_no_oiio(void) {
   sh_image_free(&img);
   if (bad)
     return 11;
+  sh_error_clear(&err);
   return has_mapped("libOpenImageIO") == 0 ? 0 : 12;
 }
 
@@ -331,7 +336,7 @@ static int child_no_oiio(void) {
 static int child_no_plugin(void) {
   setenv("SHAFTS_OIIO_PLUGIN", "/nonexistent/libshafts_oiio.so", 1);
   sh_image img, back;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   char path[512];
   if (sh_image_alloc(&img, 2, 2, &err) != SH_OK)
     return 10;
@@ -346,6 +351,7 @@ static int child_no_plugin(void) {
   sh_image_free(&back);
   remove(path);
   sh_image_free(&img);
+  sh_error_clear(&err);
   return 0;
 }
 

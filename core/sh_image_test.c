@@ -59,7 +59,7 @@ static void fill_test_image(sh_image *img) {
 }
 
 static void test_exr_roundtrip(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image img, back;
   SH_CHECK(sh_image_alloc(&img, 7, 5, &err) == SH_OK);
   fill_test_image(&img);
@@ -83,10 +83,11 @@ static void test_exr_roundtrip(void) {
   sh_image_free(&img);
   SH_CHECK(img.rgb == NULL && img.width == 0);
   sh_image_free(&img); /* twice is safe */
+  sh_error_clear(&err);
 }
 
 static void test_png_roundtrip(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image img, back;
   SH_CHECK(sh_image_alloc(&img, 9, 4, &err) == SH_OK);
   fill_test_image(&img);
@@ -127,6 +128,7 @@ static void test_png_roundtrip(void) {
   }
   sh_image_free(&back);
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 /* A hand-made 8-bit grey PNG: 3x2 pixels, stored uncompressed in a zlib
@@ -216,7 +218,7 @@ static void test_grey_png(void) {
   path_in_tmp(path, sizeof path, "grey.png");
   SH_CHECK(write_grey_png(path, pix, 3, 2));
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_image_read(path, &img, &err) == SH_OK);
   SH_CHECK(img.width == 3 && img.height == 2);
   if (img.rgb && img.width == 3 && img.height == 2) {
@@ -233,10 +235,11 @@ static void test_grey_png(void) {
     for (int i = 0; i < 6; i++)
       SH_CHECK_NEAR(img.rgb[3 * i], pix[i] / 255.0, 1e-6, 1e-7);
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 static void test_errors(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image img;
   char path[512], dir[512];
 
@@ -291,11 +294,12 @@ static void test_errors(void) {
   SH_CHECK(sh_image_alloc(&img, 0, 3, &err) == SH_ERR_ARG);
   SH_CHECK(sh_image_write(path, &img, 0, &err) == SH_ERR_ARG);
   SH_CHECK(sh_image_read(NULL, &img, &err) == SH_ERR_ARG);
+  sh_error_clear(&err);
 }
 
 static void test_lookup(void) {
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_image_alloc(&img, 2, 2, &err) == SH_OK);
   /* Red channel: 0 1 / 2 3; green constant 5; blue = row. */
   for (int i = 0; i < 4; i++) {
@@ -331,6 +335,7 @@ static void test_lookup(void) {
   o[0] = o[1] = o[2] = 1;
   sh_image_lookup(&img, 0.5, 0.5, o);
   SH_CHECK(o[0] == 0 && o[1] == 0 && o[2] == 0);
+  sh_error_clear(&err);
 }
 
 int main(void) {

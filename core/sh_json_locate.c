@@ -1,7 +1,11 @@
 #include "sh_json_locate.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+#include "sh_array.h"
+#include "sh_str.h"
 
 /* A cursor over the text. Every read is bounds-checked: past the end, peek
  * returns 0, which no JSON token starts with. */
@@ -237,69 +241,84 @@ static int is_identifier(const char *k) {
   return 1;
 }
 
-void sh__json_append_step(char *buf, size_t size, const char *key, int index) {
-  size_t n = strlen(buf);
-  if (n >= size) return;
+/* Appends the step `key` (or, key NULL, the array index) to the heap
+ * string *buf. 0 when out of memory, with *buf freed and NULL. */
+static int append_step(char **buf, const char *key, int index) {
+  char *old = *buf, *s;
   if (!key)
-    snprintf(buf + n, size - n, "[%d]", index);
+    s = sh__printf_alloc("%s[%d]", old, index);
   else if (!is_identifier(key))
-    snprintf(buf + n, size - n, "[\"%s\"]", key);
+    s = sh__printf_alloc("%s[\"%s\"]", old, key);
   else
-    snprintf(buf + n, size - n, n ? ".%s" : "%s", key);
+    s = sh__printf_alloc(old[0] ? "%s.%s" : "%s%s", old, key);
+  free(old);
+  *buf = s;
+  return s != NULL;
 }
 
-void sh__json_format_path(const sh__jseg *path, int depth, char *buf,
-                          size_t size) {
-  if (!size) return;
-  buf[0] = '\0';
-  for (int d = 0; d < depth; d++)
-    sh__json_append_step(buf, size, path[d].key, path[d].index);
+char *sh__json_format_path(const sh__jseg *path, int depth) {
+  char *buf = sh__printf_alloc("%s", "");
+  for (int d = 0; buf && d < depth; d++)
+    append_step(&buf, path[d].key, path[d].index);
+  return buf;
 }
 
-/* A container open at the scanned position, for sh__json_path_at. */
+/* A container open at the scanned position, for sh__json_path_at: its key
+ * (in an object, once read) is the string at byte `key_at` of the text. */
 typedef struct frame {
   char kind; /* '{' or '[' */
   int has_key, index;
-  char key[64];
+  size_t key_at;
 } frame;
 
-void sh__json_path_at(const char *text, size_t len, size_t offset, char *buf,
-                      size_t size) {
-  enum { MAXD = 32 };
-  frame st[MAXD];
-  int depth = 0; /* may exceed MAXD; deeper frames are not recorded */
+/* The decoded text of the JSON string whose opening quote is at byte `at`
+ * (possibly cut short by the end of the text), on the heap; NULL when out
+ * of memory. Decoded, a string is never longer than its JSON text. */
+static char *decode_string(const char *text, size_t len, size_t at) {
+  scan sc = {text, len, at};
+  skip_string(&sc);
+  char *out = malloc(sc.i - at + 1);
+  if (!out) return NULL;
+  size_t k = 0;
+  char cb[4];
+  int m;
+  sc.i = at + 1;
+  while ((m = next_char(&sc, cb)) > 0)
+    for (int j = 0; j < m; j++) out[k++] = cb[j];
+  out[k] = '\0';
+  return out;
+}
+
+char *sh__json_path_at(const char *text, size_t len, size_t offset) {
+  frame *st = NULL;
+  int depth = 0, cap = 0, lost = 0; /* lost: frames not recorded (memory) */
   scan sc = {text, len, 0};
   if (offset > len) offset = len;
   while (sc.i < offset) {
     char c = text[sc.i];
-    frame *top = depth > 0 && depth <= MAXD ? &st[depth - 1] : NULL;
+    frame *top = depth > 0 && !lost ? &st[depth - 1] : NULL;
     if (c == '"') {
       if (top && top->kind == '{' && !top->has_key) {
-        size_t k = 0;
-        char cb[4];
-        int m;
-        sc.i++;
-        while ((m = next_char(&sc, cb)) > 0)
-          for (int j = 0; j < m; j++)
-            if (k + 1 < sizeof top->key) top->key[k++] = cb[j];
-        top->key[k] = '\0';
+        top->key_at = sc.i;
         top->has_key = 1;
-        if (sc.i < len) sc.i++;
-      } else {
-        skip_string(&sc);
       }
+      skip_string(&sc);
       continue;
     }
     if (c == '{' || c == '[') {
-      if (depth < MAXD) {
+      frame *grown = lost ? NULL : sh__array_grow(st, depth, &cap, 8, sizeof *st);
+      if (grown) {
+        st = grown;
         st[depth].kind = c;
-        st[depth].has_key = 0;
-        st[depth].index = 0;
-        st[depth].key[0] = '\0';
+        depth++;
+      } else {
+        lost++;
       }
-      depth++;
     } else if (c == '}' || c == ']') {
-      if (depth > 0) depth--;
+      if (lost)
+        lost--;
+      else if (depth > 0)
+        depth--;
     } else if (c == ',' && top) {
       if (top->kind == '[')
         top->index++;
@@ -308,14 +327,23 @@ void sh__json_path_at(const char *text, size_t len, size_t offset, char *buf,
     }
     sc.i++;
   }
-  if (!size) return;
-  buf[0] = '\0';
-  for (int d = 0; d < depth && d < MAXD; d++) {
-    if (st[d].kind == '[')
-      sh__json_append_step(buf, size, NULL, st[d].index);
-    else if (st[d].has_key)
-      sh__json_append_step(buf, size, st[d].key, 0);
-    else
+  char *buf = sh__printf_alloc("%s", "");
+  for (int d = 0; buf && d < depth; d++) {
+    if (st[d].kind == '[') {
+      append_step(&buf, NULL, st[d].index);
+    } else if (st[d].has_key) {
+      char *key = decode_string(text, len, st[d].key_at);
+      if (key)
+        append_step(&buf, key, 0);
+      free(key);
+      if (!key) {
+        free(buf);
+        buf = NULL;
+      }
+    } else {
       break;
+    }
   }
+  free(st);
+  return buf;
 }

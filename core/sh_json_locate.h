@@ -35,19 +35,16 @@ int sh__json_locate(const char *text, size_t len, const sh__jseg *path,
 /* The 1-based line and column of byte `offset` in `text`. */
 void sh__json_linecol(const char *text, size_t offset, int *line, int *column);
 
-/* Writes the key path of a (possibly invalid or truncated) JSON text at byte
- * `offset` into buf, such as "lights[2].intensity": the innermost member or
- * element being read there. Writes "" at the top level. */
-void sh__json_path_at(const char *text, size_t len, size_t offset, char *buf,
-                      size_t size);
+/* The key path of a (possibly invalid or truncated) JSON text at byte
+ * `offset`, such as "lights[2].intensity": the innermost member or element
+ * being read there; "" at the top level. On the heap, whole (any depth,
+ * keys of any length); NULL when out of memory. */
+char *sh__json_path_at(const char *text, size_t len, size_t offset);
 
-/* Formats a key path as "lights[2].intensity"; keys that are not plain
- * identifiers are written as ["a key"]. */
-void sh__json_format_path(const sh__jseg *path, int depth, char *buf,
-                          size_t size);
-
-/* Appends the path step `seg` to the path string `buf` (of `size` bytes). */
-void sh__json_append_step(char *buf, size_t size, const char *key, int index);
+/* A key path formatted as "lights[2].intensity" (keys that are not plain
+ * identifiers written as ["a key"]), on the heap; NULL when out of
+ * memory. */
+char *sh__json_format_path(const sh__jseg *path, int depth);
 
 #ifdef __cplusplus
 }

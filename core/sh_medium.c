@@ -333,10 +333,10 @@ const char *sh_medium_type_name(sh_medium_type type) {
 static void refusal_at(const sh_scene *scene, int line, int column,
                        const char *path, sh_error *err) {
   if (!err) return;
-  snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
+  sh_error_set_file(err, scene->file);
+  sh_error_set_key(err, "%s", path);
   err->line = line;
   err->column = column;
-  snprintf(err->path, sizeof err->path, "%s", path);
 }
 
 void sh_medium_locate_type(const sh_scene *scene, sh_error *err) {

@@ -1,5 +1,6 @@
 /* What the core's own mesh readers share (sh_mesh_reader.h). */
 #include "sh_mesh_reader.h"
+#include "sh_str.h"
 
 #include <limits.h>
 #include <math.h>
@@ -20,21 +21,20 @@ void sh__mesh_reader_init(sh__mesh_reader *r, const char *path,
 }
 
 sh_status sh__mesh_reader_fail(sh__mesh_reader *r, long line, const char *fmt, ...) {
-  char what[SH_ERROR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(what, sizeof what, fmt, ap);
+  char *what = sh__vprintf_alloc(fmt, ap);
   va_end(ap);
   if (line > 0)
     sh_error_set(r->err, SH_ERR_MESH, "cannot load mesh '%s': line %ld: %s",
-                 r->path, line, what);
+                 r->path, line, what ? what : "out of memory");
   else
     sh_error_set(r->err, SH_ERR_MESH, "cannot load mesh '%s': byte %zu: %s",
-                 r->path, (size_t)(r->p - r->data), what);
-  if (r->err) {
-    snprintf(r->err->file, sizeof r->err->file, "%s", r->path);
+                 r->path, (size_t)(r->p - r->data), what ? what : "out of memory");
+  free(what);
+  sh_error_set_file(r->err, r->path);
+  if (r->err)
     r->err->line = line > 0 ? (int)(line < INT_MAX ? line : INT_MAX) : 0;
-  }
   return SH_ERR_MESH;
 }
 

@@ -135,7 +135,7 @@ static void base64(const unsigned char *in, size_t n, char *out) {
 
 static void test_load(void) {
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_vec3 lo, hi;
 
   const char *obj = write_file("cube.obj", cube_obj);
@@ -229,6 +229,7 @@ static void test_load(void) {
   SH_CHECK(sh_mesh_load(lines, NULL, &m, &err) == SH_ERR_MESH);
   SH_CHECK(m.positions == NULL);
   SH_CHECK(sh_mesh_load(NULL, NULL, &m, &err) == SH_ERR_ARG);
+  sh_error_clear(&err);
 }
 
 /* A glTF in tmpdir/sub whose buffer is named by `uri`, a triangle of three
@@ -253,7 +254,7 @@ static const char *escape_gltf(const char *name, const char *uri) {
  * (issue 11, "files that escape"), and vertices must be finite. */
 static void test_confined(void) {
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   char sub[300];
   snprintf(sub, sizeof sub, "%s/sub", tmpdir);
   SH_CHECK(mkdir(sub, 0700) == 0);
@@ -312,11 +313,12 @@ static void test_confined(void) {
     SH_CHECK(strstr(err.message, which[i]) != NULL);
     SH_CHECK(m.positions == NULL);
   }
+  sh_error_clear(&err);
 }
 
 static void test_heightfield(void) {
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_mesh m;
   SH_CHECK(sh_image_alloc(&img, 3, 2, &err) == SH_OK);
   /* Greys 0, 0.5, 1 / 0.25, 0.75, a colour whose mean is 0.2. */
@@ -349,6 +351,7 @@ static void test_heightfield(void) {
   SH_CHECK(sh_image_alloc(&img, 2, 2, &err) == SH_OK);
   SH_CHECK(sh_mesh_heightfield(&img, hi, lo, &m, &err) == SH_ERR_ARG);
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 /* Checks a tessellated sphere: vertices on it, every triangle within
@@ -356,7 +359,7 @@ static void test_heightfield(void) {
 static void check_sphere(sh_vec3 c, double r, double max_error) {
   sh_shape s = {.type = SH_SHAPE_SPHERE, .center = c, .radius = r};
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_mesh_tessellate(&s, max_error, &m, &err) == SH_OK);
   SH_CHECK(m.ntris > 0 && indices_valid(&m));
   double tol = 4 * FLT_EPSILON * (r + sh_length(c));
@@ -389,6 +392,7 @@ static void check_sphere(sh_vec3 c, double r, double max_error) {
   /* Euler characteristic of a sphere: V - E + F = 2, E = 3F / 2. */
   SH_CHECK(m.nverts - 3 * m.ntris / 2 + m.ntris == 2);
   sh_mesh_free(&m);
+  sh_error_clear(&err);
 }
 
 static void test_tessellate(void) {
@@ -399,7 +403,7 @@ static void test_tessellate(void) {
 
   sh_shape s;
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   memset(&s, 0, sizeof s);
   s.type = SH_SHAPE_SPHERE;
   s.radius = 1;
@@ -499,6 +503,7 @@ static void test_tessellate(void) {
   SH_CHECK(memcmp(m.positions, s.mesh.positions, 24 * sizeof(float)) == 0);
   sh_mesh_free(&m);
   sh_mesh_free(&s.mesh);
+  sh_error_clear(&err);
 }
 
 int main(void) {

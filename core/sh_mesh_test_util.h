@@ -39,7 +39,7 @@ static SH_TEST__UNUSED const char *write_text(const char *name, const char *text
 static SH_TEST__UNUSED void expect_mesh(const char *name, const char *text, int ntris,
                                         int nverts, sh_mesh *out) {
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status s = sh_mesh_load(write_text(name, text), NULL, &m, &err);
   if (s != SH_OK) fprintf(stderr, "%s: %s\n", name, err.message);
   SH_CHECK(s == SH_OK);
@@ -54,6 +54,7 @@ static SH_TEST__UNUSED void expect_mesh(const char *name, const char *text, int 
     *out = m;
   else
     sh_mesh_free(&m);
+  sh_error_clear(&err);
 }
 
 static SH_TEST__UNUSED void expect_tris(const char *name, const char *text, int ntris,
@@ -67,7 +68,7 @@ static SH_TEST__UNUSED void expect_tris(const char *name, const char *text, int 
 static SH_TEST__UNUSED void expect_error_at(const char *name, const void *data, size_t n,
                                             int line, const char *want) {
   sh_mesh m;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   struct timespec t0, t1;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   sh_status s = sh_mesh_load(write_bytes(name, data, n), NULL, &m, &err);
@@ -82,6 +83,7 @@ static SH_TEST__UNUSED void expect_error_at(const char *name, const void *data, 
   SH_CHECK(m.positions == NULL && m.ntris == 0);
   if (secs > 1.0) fprintf(stderr, "%s: %.2f s\n", name, secs);
   SH_CHECK(secs < 1.0);
+  sh_error_clear(&err);
 }
 
 static SH_TEST__UNUSED void expect_error(const char *name, const void *data, size_t n,

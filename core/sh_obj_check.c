@@ -37,10 +37,8 @@ sh_status sh__obj_check(const char *path, const char *data, size_t size,
                    "cannot load mesh '%s': line %ld: a face of %zu corners, more than the "
                    "%d whose triangulation is bounded (its time grows as the square of "
                    "the corners)", path, first, tokens - 1, SH_OBJ_MAX_CORNERS);
-      if (err) {
-        snprintf(err->file, sizeof err->file, "%s", path);
-        err->line = (int)first;
-      }
+      sh_error_set_file(err, path);
+      if (err) err->line = (int)first;
       return SH_ERR_MESH;
     }
   }

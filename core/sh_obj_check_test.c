@@ -49,11 +49,12 @@ int main(void) {
   text = polygon(SH_OBJ_MAX_CORNERS, 0);
   if (text) {
     sh_mesh m;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status s = sh_mesh_load(write_text("limit.obj", text), NULL, &m, &err);
     if (s != SH_OK) fprintf(stderr, "limit.obj: %s\n", err.message);
     SH_CHECK(s == SH_OK);
     sh_mesh_free(&m);
+    sh_error_clear(&err);
   }
   free(text);
   /* Re-reads: the library named on 4900 lines; a library named twice. */
@@ -63,10 +64,11 @@ int main(void) {
     /* The harness names the mesh m.obj. */
     write_bytes("m.obj", buf + 1, n - 1);
     sh_mesh m;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status s = sh_mesh_load(sh_mesh_test_path, NULL, &m, &err);
     SH_CHECK(s == SH_ERR_MESH && strstr(err.message, "more than 16 times over"));
     if (s != SH_ERR_MESH) fprintf(stderr, "obj_mtllib_repeat: status %d\n", s);
+    sh_error_clear(&err);
   }
   write_text("lib.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
   expect_tris("twice.obj", "mtllib lib.mtl\nmtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"

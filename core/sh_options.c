@@ -10,13 +10,11 @@
 
 sh_status sh__options_fail(sh_error *err, const char *key, const char *fmt,
                            ...) {
-  char msg[SH_ERROR_MSG_MAX];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(msg, sizeof msg, fmt, ap);
+  sh_error_vset(err, SH_ERR_ARG, fmt, ap);
   va_end(ap);
-  sh_error_set(err, SH_ERR_ARG, "%s", msg);
-  if (err) snprintf(err->path, sizeof err->path, "%s", key);
+  sh_error_set_key(err, "%s", key);
   return SH_ERR_ARG;
 }
 

@@ -56,7 +56,7 @@ static int holds(const char *path, const char *text) {
 /* An output spelled `out` is refused when `in` is the input. */
 static void refused_as_input(const char *in, const char *out,
                              const char *why) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_outputs *set = sh_outputs_new();
   SH_CHECK(sh_outputs_input(set, in, "the scene", &err) == SH_OK);
   sh_status st = sh_outputs_add(set, out, "-o", &err);
@@ -66,6 +66,7 @@ static void refused_as_input(const char *in, const char *out,
   else
     SH_CHECK(strstr(err.message, "must not overwrite an input") != NULL);
   sh_outputs_free(set);
+  sh_error_clear(&err);
 }
 
 static void test_refusals(void) {
@@ -91,7 +92,7 @@ static void test_refusals(void) {
   SH_CHECK(chdir(cwd) == 0);
 
   /* Two outputs that are one file, new or existing. */
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_outputs *set = sh_outputs_new();
   char *a = in_tmp("a.exr"), *a2 = in_tmp("sub/../a.exr");
   SH_CHECK(sh_outputs_add(set, a, "-o", &err) == SH_OK);
@@ -115,10 +116,11 @@ static void test_refusals(void) {
   rmdir(sub);
   free(scene), free(sub), free(dotdot), free(dots), free(slink), free(hard);
   free(a), free(a2), free(nowhere);
+  sh_error_clear(&err);
 }
 
 static void test_staging(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   char *a = in_tmp("a.json"), *b = in_tmp("b.png");
   put(a, "old");
   int before = count_entries(tmpdir);
@@ -159,6 +161,7 @@ static void test_staging(void) {
   unlink(a);
   sh_image_free(&img);
   free(a), free(b), free(bad);
+  sh_error_clear(&err);
 }
 
 /* The files a scene's meshes name (a glTF's buffer, an OBJ's material
@@ -188,7 +191,7 @@ static void test_mesh_files(void) {
              " \"file\": \"m.gltf\"}, {\"type\": \"mesh\", \"material\": \"m\","
              " \"file\": \"t.obj\"}]}");
   sh_scene *s = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = sh_scene_load(scene, &s, &err);
   if (st != SH_OK) fprintf(stderr, "  meshes.json: %s\n", err.message);
   SH_CHECK(st == SH_OK);
@@ -208,6 +211,7 @@ static void test_mesh_files(void) {
   }
   unlink(bin), unlink(gltf), unlink(obj), unlink(mtl), unlink(scene);
   free(bin), free(gltf), free(obj), free(mtl), free(scene);
+  sh_error_clear(&err);
 }
 
 int main(void) {

@@ -507,12 +507,14 @@ sh_status sh__syntax_error(const char *text, size_t len, const char *name,
     err->line = je->line > 0 ? je->line : 1;
     err->column = je->column > 0 ? je->column : 1;
   }
-  snprintf(err->file, sizeof err->file, "%s", name);
+  sh_error_set_file(err, name);
   /* When the offending token is a closing bracket, the path is the one
    * inside the container it fails to close. */
   if (pos > 0 && (strstr(je->text, "near '}'") || strstr(je->text, "near ']'")))
     pos--;
-  sh__json_path_at(text, len, pos, err->path, sizeof err->path);
+  char *key = sh__json_path_at(text, len, pos);
+  if (key) sh_error_set_key(err, "%s", key);
+  free(key);
   return err->status;
 }
 
@@ -535,14 +537,12 @@ static sh_status check_meshes(const sh_mesh_data *meshes, int nmeshes,
   return SH_OK;
 }
 
-static sh_status parse_buffer(const char *text, size_t len, const char *name,
-                              const char *base_dir, const sh_mesh_data *meshes,
-                              int nmeshes, int absolute_ok, sh_scene **out,
-                              sh_error *err) {
-  sh_error local;
+static sh_status parse_text(const char *text, size_t len, const char *name,
+                            const char *base_dir, const sh_mesh_data *meshes,
+                            int nmeshes, int absolute_ok, sh_scene **out,
+                            sh_error *err) {
   json_error_t je;
   sh_status st;
-  if (!err) err = &local;
   if (out) *out = NULL;
   if (!text || !out)
     return sh_error_set(err, SH_ERR_ARG, "sh_scene_parse: no text or output");
@@ -574,9 +574,20 @@ static sh_status parse_buffer(const char *text, size_t len, const char *name,
     sh_scene_free(s);
     return st;
   }
-  memset(err, 0, sizeof *err);
+  sh_error_clear(err);
   *out = s;
   return SH_OK;
+}
+
+static sh_status parse_buffer(const char *text, size_t len, const char *name,
+                              const char *base_dir, const sh_mesh_data *meshes,
+                              int nmeshes, int absolute_ok, sh_scene **out,
+                              sh_error *err) {
+  sh_error local = SH_ERROR_INIT;
+  sh_status st = parse_text(text, len, name, base_dir, meshes, nmeshes,
+                            absolute_ok, out, err ? err : &local);
+  sh_error_clear(&local);
+  return st;
 }
 
 sh_status sh_scene_parse_ex(const char *text, const char *name,
@@ -624,7 +635,7 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
   if (!f) {
     int e = errno;
     sh_error_set(err, SH_ERR_IO, "cannot open the scene file: %s", strerror(e));
-    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    sh_error_set_file(err, path);
     return SH_ERR_IO;
   }
   /* Only a regular file: /dev/zero or a FIFO would be read until memory
@@ -644,7 +655,7 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
                    "the scene file has %lld bytes, more than the %d MiB a "
                    "scene may have (SH_SCENE_MAX_BYTES, docs/scene-format.md)",
                    (long long)sb.st_size, SH_SCENE_MAX_BYTES >> 20);
-    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    sh_error_set_file(err, path);
     return S_ISREG(sb.st_mode) ? SH_ERR_SCENE : SH_ERR_IO;
   }
   size_t cap = 1 << 16, len = 0;
@@ -683,7 +694,7 @@ sh_status sh_scene_load(const char *path, sh_scene **out, sh_error *err) {
   }
   fclose(f);
   if (st != SH_OK) {
-    if (err) snprintf(err->file, sizeof err->file, "%s", path);
+    sh_error_set_file(err, path);
     free(buf);
     return st;
   }

@@ -40,8 +40,10 @@ static void locate(sh__pctx *c, int at_key) {
   int depth = c->depth < SH__PATH_MAX ? c->depth : SH__PATH_MAX;
   size_t off = 0;
   int found = 0;
-  snprintf(e->file, sizeof e->file, "%s", c->name ? c->name : "");
-  sh__json_format_path(c->path, depth, e->path, sizeof e->path);
+  sh_error_set_file(e, c->name);
+  char *key = sh__json_format_path(c->path, depth);
+  if (key) sh_error_set_key(e, "%s", key);
+  free(key);
   for (int d = depth; d >= 0 && !found; d--) {
     found = sh__json_locate(
         c->text, c->len, c->path, d,
@@ -64,9 +66,7 @@ static sh_status vfail(sh__pctx *c, int at_key, sh_status status,
                        const char *fmt, va_list ap) {
   sh_error *e = c->err;
   if (!e) return status;
-  memset(e, 0, sizeof *e);
-  e->status = status;
-  vsnprintf(e->message, sizeof e->message, fmt, ap);
+  sh_error_vset(e, status, fmt, ap);
   locate(c, at_key);
   return status;
 }
@@ -101,7 +101,8 @@ sh_status sh__fail_at(sh__pctx *c, const char *key, sh_status status,
 sh_status sh__fail_from(sh__pctx *c, const char *key, const sh_error *inner,
                         const char *prefix) {
   sh_status status = inner->status != SH_OK ? inner->status : SH_ERR_SCENE;
-  const char *msg = inner->message[0] ? inner->message : sh_strerror(status);
+  const char *msg =
+      inner->message && inner->message[0] ? inner->message : sh_strerror(status);
   if (key) return sh__fail_at(c, key, status, "%s%s", prefix, msg);
   return sh__fail(c, status, "%s%s", prefix, msg);
 }

@@ -34,8 +34,9 @@ static void render(const sh_scene *s, sh_image *img) {
   sh_reference_options opt = sh_reference_defaults(s);
   opt.spp = 2;
   opt.threads = 2;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_render_reference(s, &opt, img, NULL, &err) == SH_OK);
+  sh_error_clear(&err);
 }
 
 /* The teapot from its OBJ file and from the same arrays in memory. */
@@ -44,7 +45,7 @@ static void test_equals_file(void) {
   snprintf(dir, sizeof dir, "%s/scenes/assets", source_dir());
   snprintf(obj, sizeof obj, "%s/teapot.obj", dir);
   sh_mesh m = {0};
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_mesh_load(obj, NULL, &m, &err) == SH_OK);
   if (!m.ntris) return;
   int *idx = malloc(sizeof *idx * 3 * (size_t)m.ntris);
@@ -83,6 +84,7 @@ static void test_equals_file(void) {
   sh_image_free(&ib);
   sh_scene_free(a);
   sh_scene_free(b);
+  sh_error_clear(&err);
 }
 
 typedef struct bad_case {
@@ -131,7 +133,7 @@ static void test_bad(void) {
     const bad_case *k = &cases[i];
     snprintf(text, sizeof text, fmt, k->mesh);
     sh_scene *s = (sh_scene *)1;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status st = sh_scene_parse_ex(text, "bad.json", NULL,
                                      k->which < 0 ? NULL : sets[k->which],
                                      k->which < 0 ? 0 : 2, &s, &err);
@@ -140,6 +142,7 @@ static void test_bad(void) {
     SH_CHECK(s == NULL &&
              sh_test_error_is(what, st, &err, k->status, k->column ? 11 : 0,
                               k->column, k->path, k->message));
+    sh_error_clear(&err);
   }
 }
 

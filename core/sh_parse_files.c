@@ -75,12 +75,11 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
   const char *name;
   char *path = NULL;
   sh_status st;
-  sh_error e;
+  sh_error e = SH_ERROR_INIT;
   if ((st = sh__string(&p->c, obj, key, 1, &name))) return st;
   if ((st = sh__resolve_file(p, key, name, &path))) return st;
   if ((st = sh__check_file(p, key, name, path, "image", SH_ERR_IMAGE)))
     goto out;
-  memset(&e, 0, sizeof e);
   if ((st = data ? sh_image_read_data(path, img, &e)
                   : sh_image_read(path, img, &e))) {
     const char *fmt = "cannot read the image '%s': ";
@@ -112,6 +111,7 @@ sh_status sh__load_image(sh__parser *p, json_t *obj, const char *key,
     goto out;
   }
 out:
+  sh_error_clear(&e);
   if (st == SH_OK && path_out)
     *path_out = path;
   else

@@ -121,7 +121,7 @@ sh_status sh__parse_light(sh__parser *p, json_t *o, void *item) {
   sh__pctx *c = &p->c;
   sh_status st;
   int type, has_up = 0;
-  sh_error e;
+  sh_error e = SH_ERROR_INIT;
   if ((st = sh__choice(c, o, "type", 1, light_names, 0, "light type", &type)))
     return st;
   l->type = (sh_light_type)type;
@@ -153,8 +153,10 @@ sh_status sh__parse_light(sh__parser *p, json_t *o, void *item) {
   }
   if (l->type != SH_LIGHT_POINT && (st = parse_light_map(p, o, l, &has_up)))
     return st;
-  memset(&e, 0, sizeof e);
-  if (sh_light_prepare(l, p->scene->camera.up, has_up, &e) != SH_OK)
-    return sh__fail_from(c, l->has_map ? "light_map" : NULL, &e, "");
+  if (sh_light_prepare(l, p->scene->camera.up, has_up, &e) != SH_OK) {
+    st = sh__fail_from(c, l->has_map ? "light_map" : NULL, &e, "");
+    sh_error_clear(&e);
+    return st;
+  }
   return SH_OK;
 }

@@ -170,7 +170,7 @@ static sh_status find_material(sh__parser *p, json_t *o, int *out) {
 static sh_status parse_mesh_file(sh__parser *p, json_t *o, sh_shape *sh) {
   const char *name;
   sh_status st;
-  sh_error e;
+  sh_error e = SH_ERROR_INIT;
   int has_file = json_object_get(o, "file") != NULL;
   int has_data = json_object_get(o, "data") != NULL;
   if (has_file && has_data) {
@@ -190,20 +190,20 @@ static sh_status parse_mesh_file(sh__parser *p, json_t *o, sh_shape *sh) {
       (st =
            sh__check_file(p, "file", name, sh->file, "mesh file", SH_ERR_MESH)))
     return st;
-  memset(&e, 0, sizeof e);
   /* The files the mesh names stay in the scene's tree (or, for a mesh the
    * scene names by an absolute path, in the mesh's own directory). */
   const char *root = name[0] == '/' ? NULL : p->base_dir ? p->base_dir : "";
   if ((st = sh__mesh_load_named(sh->file, root, &sh->mesh, &sh->named, &sh->nnamed, &e)))
-    return sh__fail_from(&p->c, "file", &e, ""); /* it names the file */
-  return SH_OK;
+    sh__fail_from(&p->c, "file", &e, ""); /* it names the file */
+  sh_error_clear(&e);
+  return st;
 }
 
 static sh_status parse_heightfield(sh__parser *p, json_t *o, sh_shape *sh) {
   sh__pctx *c = &p->c;
   sh_image img = {0, 0, NULL};
   sh_status st;
-  sh_error e;
+  sh_error e = SH_ERROR_INIT;
   if ((st = sh__min_max(c, o, &sh->bmin, &sh->bmax)) ||
       (st = sh__load_image(p, o, "image", 1, &img, &sh->file)))
     return st;
@@ -213,9 +213,9 @@ static sh_status parse_heightfield(sh__parser *p, json_t *o, sh_shape *sh) {
                      "found %d x %d",
                      img.width, img.height);
   } else {
-    memset(&e, 0, sizeof e);
     if ((st = sh_mesh_heightfield(&img, sh->bmin, sh->bmax, &sh->mesh, &e)))
       sh__fail_from(c, "image", &e, "cannot build the heightfield: ");
+    sh_error_clear(&e);
   }
   sh_image_free(&img);
   return st;

@@ -32,13 +32,14 @@ static void write_text(const char *name, const char *text) {
 
 static void write_image(const char *name, int w, int h) {
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   char path[512];
   path_in_tmp(path, sizeof path, name);
   SH_CHECK(sh_image_alloc(&img, w, h, &err) == SH_OK);
   for (int i = 0; i < w * h * 3; i++) img.rgb[i] = (float)(i % 5) / 4.0f;
   SH_CHECK(sh_image_write(path, &img, 0.0, &err) == SH_OK);
   sh_image_free(&img);
+  sh_error_clear(&err);
 }
 
 /* The files the scenes refer to. */
@@ -148,7 +149,7 @@ static int ends_with(const char *s, const char *tail) {
 }
 
 static void test_full_scene(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = load_text("full.json", full_scene, &err);
   SH_CHECK(s != NULL);
   if (!s) return;
@@ -281,6 +282,7 @@ static void test_full_scene(void) {
   SH_CHECK(s->render.seed == 4000000000u);
   SH_CHECK(s->render.exposure == -1.5);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 #define MINIMAL_HEAD                                                           \
@@ -291,7 +293,7 @@ static void test_full_scene(void) {
 /* The renderers' render keys are kept as given, with their places, for the
  * renderer to check (gl_shafts' and lmm_tracer's tests check the refusals). */
 static void test_render_params(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   SH_CHECK(sh_scene_parse(MINIMAL_HEAD ",\n\"render\": {\"spp\": 4, "
                           "\"lattice\": [20, 1], \"xi\": \"exakt\"}}",
@@ -306,10 +308,11 @@ static void test_render_params(void) {
     SH_CHECK(!strcmp(q->key, "xi") && !strcmp(q->text, "exakt"));
   }
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 static void test_defaults(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   SH_CHECK(sh_scene_parse(MINIMAL_HEAD "}", "mem.json", NULL, &s, &err) ==
            SH_OK);
@@ -350,6 +353,7 @@ static void test_defaults(void) {
     SH_CHECK(s->render.spp == 8);
   }
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 static void test_phase_types(void) {
@@ -360,7 +364,7 @@ static void test_phase_types(void) {
       SH_PHASE_RAYLEIGH};
   for (int i = 0; i < 4; i++) {
     char text[1024];
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_scene *s = NULL;
     snprintf(text, sizeof text,
              MINIMAL_HEAD ", \"medium\": {\"sigma_s\": [1, 1, 1], \"phase\": "
@@ -373,11 +377,12 @@ static void test_phase_types(void) {
       SH_CHECK(s->medium.phase.g == 0);
     }
     sh_scene_free(s);
+    sh_error_clear(&err);
   }
 }
 
 static void test_bounds(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   SH_CHECK(sh_scene_parse(
                MINIMAL_HEAD
@@ -420,12 +425,13 @@ static void test_bounds(void) {
     check_vec(hi, 4, 2, 1);
   }
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 /* An atmosphere with every key (Bruneton 2017 in km), and the defaults
  * and derived values of one with Rayleigh alone. */
 static void test_atmosphere(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   SH_CHECK(sh_scene_parse(
                MINIMAL_HEAD ",\n\"medium\": {\"type\": \"atmosphere\", "
@@ -472,6 +478,7 @@ static void test_atmosphere(void) {
     SH_CHECK(s->medium.sigma_t.z == 3);
     sh_scene_free(s);
   }
+  sh_error_clear(&err);
 }
 
 /* A bad scene, what the parser must say about it, and where. */
@@ -828,7 +835,7 @@ static void test_bad_cases(void) {
   for (int i = 0; i < n; i++) {
     const bad_case *b = &bad_cases[i];
     char name[64], path[512], formatted[2048], prefix[700];
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_scene *s = (sh_scene *)1;
     snprintf(name, sizeof name, "bad%02d.json", i);
     write_text(name, b->text);
@@ -849,11 +856,12 @@ static void test_bad_cases(void) {
       fprintf(stderr, "%s: %s\n", name, formatted);
       show_position(b->text, err.line, err.column);
     }
+    sh_error_clear(&err);
   }
 }
 
 static void test_io_errors(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = (sh_scene *)1;
   char path[512];
   path_in_tmp(path, sizeof path, "does-not-exist.json");
@@ -870,13 +878,14 @@ static void test_io_errors(void) {
   /* A NULL error report is allowed. */
   SH_CHECK(sh_scene_parse("{", "x", NULL, &s, NULL) == SH_ERR_SYNTAX);
   SH_CHECK(s == NULL);
+  sh_error_clear(&err);
 }
 
 /* Files that are not regular would be read forever (/dev/zero), block (a
  * FIFO) or exhaust memory (a scene beyond SH_SCENE_MAX_BYTES): refused
  * with a clear message before a byte is read (issue 11, kind 7). */
 static void test_not_regular(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   SH_CHECK(sh_scene_load("/dev/zero", &s, &err) == SH_ERR_IO && s == NULL);
   SH_CHECK(strstr(err.message, "a character device, not a regular file"));
@@ -910,11 +919,12 @@ static void test_not_regular(void) {
   SH_CHECK(strstr(err.message, "more than the 64 MiB a scene may have"));
   SH_CHECK(strcmp(err.file, big) == 0);
   unlink(big);
+  sh_error_clear(&err);
 }
 
 /* sh_scene_parse resolves names against base_dir, and reports `name`. */
 static void test_parse_base_dir(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   const char *text =
       MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": [{\"type\": "
@@ -932,6 +942,7 @@ static void test_parse_base_dir(void) {
            SH_ERR_IO);
   SH_CHECK(strcmp(err.file, "in-memory") == 0);
   SH_CHECK(strstr(err.message, "/nonexistent-dir/tet.obj") != NULL);
+  sh_error_clear(&err);
 }
 
 /* Files named relatively must stay in the scene's directory tree, however
@@ -954,7 +965,7 @@ static void test_confined_names(void) {
                           "\"file\": \"%s\"}]}",
              names[i]);
     sh_scene *s = NULL;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status st = sh_scene_parse(text, "in-memory", sub, &s, &err);
     /* "x/../../tet.obj" names a directory x that does not exist: the OS
      * refuses it before confinement has a say. */
@@ -976,6 +987,7 @@ static void test_confined_names(void) {
       SH_CHECK(st == (i == 2 ? SH_ERR_IO : SH_OK));
       sh_scene_free(s);
     }
+    sh_error_clear(&err);
   }
   unlink(link);
   rmdir(sub);
@@ -994,13 +1006,14 @@ static void test_confined_names(void) {
     fclose(f);
   }
   sh_scene *s = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_scene_load(scene, &s, &err) == SH_ERR_SCENE && s == NULL);
   SH_CHECK(strstr(err.message, "is absolute") != NULL);
   SH_CHECK(strcmp(err.path, "shapes[0].file") == 0 && err.line > 0);
   SH_CHECK(sh_scene_parse(text, "in-memory", tmpdir, &s, &err) == SH_OK);
   sh_scene_free(s);
   unlink(scene);
+  sh_error_clear(&err);
 }
 
 /* Light-map and heightfield texels must be finite and non-negative: NaN,
@@ -1010,7 +1023,7 @@ static void test_bad_texels(void) {
   const float bad[] = {NAN, INFINITY, -INFINITY, -0.5f};
   for (int i = 0; i < 4; i++) {
     sh_image img;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     SH_CHECK(sh_image_alloc(&img, 3, 2, &err) == SH_OK);
     for (int k = 0; k < 18; k++) img.rgb[k] = 0.5f;
     img.rgb[3 * (1 * 3 + 2) + 1] = bad[i]; /* texel (2, 1), channel G */
@@ -1036,6 +1049,7 @@ static void test_bad_texels(void) {
       SH_CHECK(strstr(err.path, "image") != NULL && err.line > 0);
     }
     unlink(path);
+    sh_error_clear(&err);
   }
 }
 
@@ -1062,12 +1076,32 @@ static void test_locator(void) {
   sh__jseg p5[] = {{"a\"b", 0}, {"x", 0}, {NULL, 5}};
   SH_CHECK(!sh__json_locate(text, len, p5, 3, 0, &off));
 
-  char buf[128];
-  sh__json_format_path(p1, 5, buf, sizeof buf);
-  SH_CHECK(strcmp(buf, "[\"a\"b\"].x[1][1].y") == 0);
+  char *buf = sh__json_format_path(p1, 5);
+  SH_CHECK(buf && strcmp(buf, "[\"a\"b\"].x[1][1].y") == 0);
+  free(buf);
   const char *trunc = "{\"lights\": [{\"type\": \"spot\"}, {\"position\": [1, ";
-  sh__json_path_at(trunc, strlen(trunc), strlen(trunc), buf, sizeof buf);
-  SH_CHECK(strcmp(buf, "lights[1].position[1]") == 0);
+  buf = sh__json_path_at(trunc, strlen(trunc), strlen(trunc));
+  SH_CHECK(buf && strcmp(buf, "lights[1].position[1]") == 0);
+  free(buf);
+  /* Keys of any length and any depth, escapes decoded (the path was cut
+   * at 256 characters, keys at 64 and depth at 32). */
+  size_t nkey = 300, ndeep = 50;
+  char *deep = malloc(nkey + 16 + 2 * ndeep + 8);
+  size_t at = 0;
+  deep[at++] = '{';
+  deep[at++] = '"';
+  for (size_t i = 0; i < nkey; i++) deep[at++] = (char)('a' + i % 26);
+  memcpy(deep + at, "\\u00e9\": ", 10);
+  at += 10;
+  for (size_t i = 0; i < ndeep; i++) deep[at++] = '[';
+  deep[at] = '\0';
+  buf = sh__json_path_at(deep, at, at);
+  SH_CHECK(buf && strlen(buf) == nkey + 6 + 3 * ndeep &&
+           !strncmp(buf, "[\"abc", 5) && strstr(buf, "n\xc3\xa9\"][0][0]") &&
+           !strcmp(buf + strlen(buf) - 3, "[0]"));
+  if (buf) printf("a key path of %zu characters\n", strlen(buf));
+  free(buf);
+  free(deep);
 
   SH_CHECK(sh__edit_distance("positon", "position") == 1);
   SH_CHECK(sh__edit_distance("Position", "position") == 0);

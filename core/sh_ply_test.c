@@ -69,7 +69,7 @@ int main(void) {
       n += 4;
     }
     sh_mesh m;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     const char *p = write_bytes(be ? "tri_be.ply" : "tri_le.ply", buf, n);
     sh_status s = sh_mesh_load(p, NULL, &m, &err);
     SH_CHECK(s == SH_OK);
@@ -91,6 +91,7 @@ int main(void) {
     /* The header with no end_header, in binary. */
     expect_error(be ? "open_be.ply" : "open_le.ply", buf,
                  strlen(hdr) + strlen("element vertex 3\nproperty float x\n"), "end_header");
+    sh_error_clear(&err);
   }
 
   /* The input mesh_fuzz found (fuzz/known/ply_hang; its first byte picks

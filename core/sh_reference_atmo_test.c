@@ -212,7 +212,7 @@ static void check_view(const char *what, view v) {
   opt.spp = 20000;
   opt.threads = 1;
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) == SH_OK);
   for (int k = 0; k < 3; k++) {
     double got = img.rgb[k];
@@ -224,6 +224,7 @@ static void check_view(const char *what, view v) {
   }
   sh_image_free(&img);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 static sh_vec3 elevation(double az_deg, double el_deg) {

@@ -52,9 +52,10 @@ static sh_image render(const char *json, const char *name) {
   sh_reference_options opt = sh_reference_defaults(s);
   opt.spp = 16;
   opt.threads = 2;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) == SH_OK);
   sh_scene_free(s);
+  sh_error_clear(&err);
   return img;
 }
 

@@ -124,7 +124,7 @@ int main(void) {
   opt.threads = 1;
   opt.crop = (sh_crop){px, py, px + 1, py + 1};
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) == SH_OK);
   double got = img.rgb[0];
   fprintf(stderr, "height fog, one ray: reference %.8g, quadrature %.8g "
@@ -134,5 +134,6 @@ int main(void) {
   SH_CHECK_NEAR(got, want, 1e-3, 0);
   sh_image_free(&img);
   sh_scene_free(s);
+  sh_error_clear(&err);
   SH_TEST_DONE();
 }

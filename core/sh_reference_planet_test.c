@@ -170,11 +170,12 @@ static void render(const sh_scene *s, sh_image *img) {
   opt.spp = 64;
   opt.seed = 3;
   opt.threads = 2;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_render_reference(s, &opt, img, NULL, &err) != SH_OK) {
     fprintf(stderr, "render failed: %s\n", err.message);
     SH_CHECK(0);
   }
+  sh_error_clear(&err);
 }
 
 /* The rendered image against the closed form over the pixels the form

@@ -208,12 +208,13 @@ static void progress_and_cancel(void) {
     c.stop_at = 1;
     opt.progress_user = &c;
     opt.cancel = &c.cancel;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     img.rgb = (float *)1;
     SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) ==
              SH_ERR_CANCELLED);
     SH_CHECK(err.status == SH_ERR_CANCELLED && img.rgb == NULL);
     SH_CHECK(c.calls < tiles);
+    sh_error_clear(&err);
   }
   sh_scene_free(s);
 }

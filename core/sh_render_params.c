@@ -17,16 +17,16 @@ sh_status sh__render_params_apply(const sh_scene *scene, const sh__opt *table,
   for (int k = 0; keys[k]; k++) {
     const sh_render_param *q = sh__render_param(scene, keys[k]);
     if (!q) continue;
-    sh_error inner;
+    sh_error inner = SH_ERROR_INIT;
     if (sh__options_set(table, n, target, q->key, q->text, &inner) == SH_OK)
       continue;
     sh_error_set(err, SH_ERR_SCENE, "%s", inner.message);
+    sh_error_clear(&inner);
+    sh_error_set_file(err, scene->file);
+    sh_error_set_key(err, "render.%s", q->key);
     if (err) {
-      snprintf(err->file, sizeof err->file, "%s",
-               scene->file ? scene->file : "");
       err->line = q->line;
       err->column = q->column;
-      snprintf(err->path, sizeof err->path, "render.%s", q->key);
     }
     return SH_ERR_SCENE;
   }

@@ -99,7 +99,7 @@ static void check_fan(const pose *p, const char *name) {
   SH_CHECK(s != NULL);
   if (!s) return;
   sh_rt *rt = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_rt_create(s, &rt, &err) == SH_OK);
   if (!rt) {
     sh_scene_free(s);
@@ -141,6 +141,7 @@ static void check_fan(const pose *p, const char *name) {
   SH_CHECK(far == 0);
   sh_rt_free(rt);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 /* The pixel that leaked, rendered as the validation run did. */
@@ -156,13 +157,14 @@ static void check_pixel(void) {
   opt.threads = 1;
   opt.crop = (sh_crop){67, 57, 68, 58};
   sh_image img;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_render_reference(s, &opt, &img, NULL, &err) == SH_OK);
   fprintf(stderr, "light_in_quads 160x120 pixel (67, 57): %.9g\n",
           (double)img.rgb[0]);
   SH_CHECK(img.rgb[0] == 0 && img.rgb[1] == 0 && img.rgb[2] == 0);
   sh_image_free(&img);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 int main(void) {

@@ -11,6 +11,7 @@
 
 #include "sh_error.h"
 #include "sh_parse.h"
+#include "sh_str.h"
 
 /* Unused in a test that only borrows the helpers below. */
 #if defined(__GNUC__)
@@ -67,13 +68,14 @@ static inline int sh_test_error_is(const char *what, sh_status got,
  * current directory. Returns the scene, or NULL after printing the located
  * error. */
 static inline sh_scene *sh_test_parse(const char *json, const char *name) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   if (sh_scene_parse(json, name, ".", &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "parse failed: %s\n", buf);
+    char *text = sh_error_text(&err);
+    fprintf(stderr, "parse failed: %s\n", text ? text : err.message);
+    free(text);
   }
+  sh_error_clear(&err);
   return s;
 }
 
@@ -88,18 +90,23 @@ static inline sh_scene *sh_test_load(const char *fmt, ...)
     ;
 static inline sh_scene *sh_test_load(const char *fmt, ...) {
   const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char rel[512], path[1024], buf[2048];
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(rel, sizeof rel, fmt, ap);
+  char *rel = sh__vprintf_alloc(fmt, ap);
   va_end(ap);
-  snprintf(path, sizeof path, "%s/%s", src ? src : "../..", rel);
+  char *path = rel ? sh__printf_alloc("%s/%s", src ? src : "../..", rel) : NULL;
   sh_scene *s = NULL;
-  sh_error err;
-  if (sh_scene_load(path, &s, &err) != SH_OK) {
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "%s\n", buf);
+  sh_error err = SH_ERROR_INIT;
+  if (!path) {
+    fprintf(stderr, "out of memory\n");
+  } else if (sh_scene_load(path, &s, &err) != SH_OK) {
+    char *text = sh_error_text(&err);
+    fprintf(stderr, "%s\n", text ? text : err.message);
+    free(text);
   }
+  sh_error_clear(&err);
+  free(rel);
+  free(path);
   return s;
 }
 

@@ -51,10 +51,11 @@ static inline sh_scene *sh_test_far_camera(double distance, double scale,
       10 * k * k, 10 * k * k, 10 * k * k,
       SH__P(-2, 0, 2), 4 * k, -4 * k, SH__P(0.35, 2.4, 0.1), 0.35 * k);
 #undef SH__P
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   if (sh_scene_parse(json, "far_camera.json", ".", &s, &err) != SH_OK)
     fprintf(stderr, "far_camera.json: %s\n", err.message);
+  sh_error_clear(&err);
   return s;
 }
 

@@ -222,11 +222,9 @@ static unsigned apply(sh_scene *s, patch *pt) {
   return changed;
 }
 
-sh_status sh_scene_update(sh_scene *scene, const char *text, const char *name,
-                          unsigned *changed, sh_error *err) {
-  sh_error local;
+static sh_status update(sh_scene *scene, const char *text, const char *name,
+                        unsigned *changed, sh_error *err) {
   json_error_t je;
-  if (!err) err = &local;
   if (changed) *changed = 0;
   if (!scene || !text)
     return sh_error_set(err, SH_ERR_ARG, "sh_scene_update: no scene or patch");
@@ -249,11 +247,19 @@ sh_status sh_scene_update(sh_scene *scene, const char *text, const char *name,
   if (st == SH_OK) {
     unsigned bits = apply(scene, &pt);
     if (changed) *changed = bits;
-    memset(err, 0, sizeof *err);
+    sh_error_clear(err);
   }
   free_lights(pt.tmp.lights, pt.tmp.nlights);
   free(pt.xform);
   free(pt.inv);
   free(pt.given);
+  return st;
+}
+
+sh_status sh_scene_update(sh_scene *scene, const char *text, const char *name,
+                          unsigned *changed, sh_error *err) {
+  sh_error local = SH_ERROR_INIT;
+  sh_status st = update(scene, text, name, changed, err ? err : &local);
+  sh_error_clear(&local);
   return st;
 }

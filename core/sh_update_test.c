@@ -51,10 +51,11 @@ static sh_scene *parse(parts p) {
   snprintf(text, sizeof text, SCENE_FMT, p.camera, p.background, p.ambient,
            medium, p.lights, p.transform);
   sh_scene *s = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_scene_parse(text, "scene.json", NULL, &s, &err) != SH_OK)
     fprintf(stderr, "%s: %s\n", err.path, err.message);
   SH_CHECK(s != NULL);
+  sh_error_clear(&err);
   return s;
 }
 
@@ -103,7 +104,7 @@ static int same_scene(const sh_scene *a, const sh_scene *b) {
 static void check_update(const char *patch, parts expect, unsigned bits) {
   sh_scene *s = parse(base), *want = parse(expect);
   unsigned changed = 999;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (!s || !want) goto out;
   sh_status st = sh_scene_update(s, patch, "patch.json", &changed, &err);
   SH_CHECK(st == SH_OK);
@@ -115,6 +116,7 @@ static void check_update(const char *patch, parts expect, unsigned bits) {
 out:
   sh_scene_free(s);
   sh_scene_free(want);
+  sh_error_clear(&err);
 }
 
 static void test_updates(void) {
@@ -191,7 +193,7 @@ static void test_map_follows_camera_up(void) {
   char dir[600], text[2048];
   snprintf(dir, sizeof dir, "%s/scenes/assets", src ? src : "..");
   sh_scene *s = NULL, *want = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   snprintf(text, sizeof text, fmt, "[0, 1, 0]");
   SH_CHECK(sh_scene_parse(text, "a.json", dir, &s, &err) == SH_OK);
   snprintf(text, sizeof text, fmt, "[1, 1, 0]");
@@ -217,6 +219,7 @@ static void test_map_follows_camera_up(void) {
   }
   sh_scene_free(s);
   sh_scene_free(want);
+  sh_error_clear(&err);
 }
 
 typedef struct bad_case {
@@ -283,7 +286,7 @@ static void test_bad(void) {
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     const bad_case *k = &cases[i];
     unsigned changed = 999;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status st = sh_scene_update(s, k->patch, "patch.json", &changed, &err);
     char what[40];
     snprintf(what, sizeof what, "case %zu", i);
@@ -291,6 +294,7 @@ static void test_bad(void) {
                               k->path, k->message) &&
              strcmp(err.file, "patch.json") == 0 && changed == 0);
     SH_CHECK(same_scene(s, orig));
+    sh_error_clear(&err);
   }
   sh_scene_free(s);
   sh_scene_free(orig);
@@ -307,7 +311,7 @@ static void test_bad(void) {
 
 static void test_atmosphere_patch(void) {
   sh_scene *s = parse(base);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   unsigned changed = 999;
   if (!s) return;
   SH_CHECK(sh_scene_update(s, ATMO_PATCH("30"), "p.json", &changed, &err) == SH_OK);
@@ -319,6 +323,7 @@ static void test_atmosphere_patch(void) {
   SH_CHECK(changed == SH_CHANGED_MEDIUM);
   SH_CHECK(s->medium.atmo.ozone_width == 20);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 int main(void) {

@@ -40,7 +40,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   fwrite(data + 1, 1, size - 1, f);
   fclose(f);
   sh_mesh mesh;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_mesh_load(path, dir, &mesh, &err) == SH_OK) sh_mesh_free(&mesh);
+  sh_error_clear(&err);
   return 0;
 }

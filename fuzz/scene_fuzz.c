@@ -19,10 +19,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   memcpy(text, data, size);
   text[size] = '\0';
   sh_scene *scene = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_scene_parse(text, "fuzz.json", SHAFTS_FUZZ_ASSETS, &scene, &err) ==
       SH_OK)
     sh_scene_free(scene);
+  sh_error_clear(&err);
   free(text);
   return 0;
 }

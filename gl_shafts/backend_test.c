@@ -41,7 +41,7 @@ static void egl_hidden(void) {
   }
   sh_image img = {0};
   gs_stats st;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status s = render(scene, GS_BACKEND_AUTO, &img, &st, &err);
   tu_check(s == SH_OK, "auto renders with EGL hidden");
   if (s == SH_OK) {
@@ -60,6 +60,7 @@ static void egl_hidden(void) {
   tu_check(strstr(err.message, "device platform") != NULL,
         "the message says what EGL lacked");
   sh_scene_free(scene);
+  sh_error_clear(&err);
 }
 
 int main(int argc, char **argv) {
@@ -69,7 +70,7 @@ int main(int argc, char **argv) {
   }
   sh_scene *scene = small("teapot_spot.json");
   if (!scene) return 1;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   gs_options o = gs_options_defaults(scene);
   o.backend = (gs_backend)7;
   tu_check(gs_options_check(&o, &err) == SH_ERR_ARG, "backend 7 is refused");
@@ -88,7 +89,7 @@ int main(int argc, char **argv) {
     if (!scene) return 1;
     sh_image egl = {0}, osmesa = {0};
     gs_stats se, so;
-    sh_error ee, eo;
+    sh_error ee = SH_ERROR_INIT, eo = SH_ERROR_INIT;
     sh_status a = render(scene, GS_BACKEND_EGL, &egl, &se, &ee);
     sh_status b = render(scene, GS_BACKEND_OSMESA, &osmesa, &so, &eo);
     if (a != SH_OK) printf("skip egl: %s\n", ee.message);
@@ -116,6 +117,9 @@ int main(int argc, char **argv) {
     sh_image_free(&egl);
     sh_image_free(&osmesa);
     sh_scene_free(scene);
+    sh_error_clear(&ee);
+    sh_error_clear(&eo);
   }
+  sh_error_clear(&err);
   return tu_failures ? 1 : 0;
 }

@@ -223,7 +223,7 @@ static sh_status run(const char *path, sh_scene *scene,
 
 /* --compare A B: the error of A against B. */
 static int compare(const char *a_path, const char *b_path) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image a = {0}, b = {0};
   sh_image_error e;
   int rc = 0;
@@ -267,7 +267,7 @@ int main(int argc, char **argv) {
   printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   rc = 0;
   for (int k = 0; k < parsed.noperands && rc == 0; k++) {
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_scene *scene = NULL;
     const char *path = parsed.operands[k];
     if ((rc = sh_cli_load_scene(TOOL, path, 1, &scene))) return rc;

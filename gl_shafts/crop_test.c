@@ -108,7 +108,7 @@ int main(void) {
   gs_options kept = o;
   kept.crop = (sh_crop){10, 12, 50, 40};
   gs_renderer *r = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(gs_renderer_create(s, &kept, &r, &err) == SH_OK);
   sh_image drawn = {0}, rendered = {0};
   if (r && sh_image_alloc(&drawn, 40, 28, NULL) == SH_OK &&
@@ -141,5 +141,6 @@ int main(void) {
     if (!ok) fprintf(stderr, "bad crop %zu: %s\n", i, err.message);
   }
   sh_scene_free(s);
+  sh_error_clear(&err);
   SH_TEST_DONE();
 }

@@ -92,7 +92,7 @@ static int run(twins *t, int which, int bake, const float *in0, const float *in1
   gs__params *p = gs__params_begin(&fr, &ls, extra);
   gs__param_f(p, "u_depth", 0.0);
   GLuint prog;
-  sh_error err = {0};
+  sh_error err = SH_ERROR_INIT;
   if (gs__program_use(&t->progs, &gs__glsl_screen_vert, &TWIN, p, &prog, &err) != SH_OK) {
     printf("FAIL: the twin program: %s\n", err.message);
     return 0;
@@ -110,6 +110,7 @@ static int run(twins *t, int which, int bake, const float *in0, const float *in1
   gs__target_draw_polygon(&t->target, FULL, 4);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, out);
+  sh_error_clear(&err);
   return gs__gl_check("reading the twin's image", &err) == SH_OK;
 }
 
@@ -328,7 +329,7 @@ int main(void) {
   if (!t.scene) return 1;
   gs__context *ctx = tu_context();
   if (!ctx) return 1;
-  sh_error err = {0};
+  sh_error err = SH_ERROR_INIT;
   gs__view_init(&t.view, t.scene, NULL);
   t.view.anchor = sh_v3s(0.0); /* the twins take world-space inputs */
   if (gs__target_create(&t.target, W, H, &err) != SH_OK) {
@@ -348,5 +349,6 @@ int main(void) {
   gs__context_release(ctx);
   gs__context_free(ctx);
   sh_scene_free(t.scene);
+  sh_error_clear(&err);
   return tu_failures ? 1 : 0;
 }

@@ -44,9 +44,10 @@ int main(int argc, char **argv) {
   int hw = gs__egl_devices(devices, sizeof devices);
   printf("devices: %d hardware\n%s", hw < 0 ? 0 : hw, devices);
   gs__context *ctx = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs__context_create(backend, &ctx, &err) != SH_OK) {
     printf("backend: none\nerror: %s\nhardware: no\n", err.message);
+    sh_error_clear(&err);
     return 1;
   }
   const char *r = gs__context_renderer(ctx);

@@ -62,7 +62,7 @@ static double run(gs__context *ctx, const gs__atmo *a, const view_case *vc, int 
   gs__frame fr = {s, &view, &progs, &params, 1};
   gs__target t;
   gs__atmo_gl g;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   gs__atmo_source src = {aq_depth, a};
   double err_out = 1e9;
   float *rgba = malloc((size_t)w * h * 4 * sizeof *rgba);
@@ -135,6 +135,7 @@ static double run(gs__context *ctx, const gs__atmo *a, const view_case *vc, int 
   gs__programs_free(&progs);
   gs__params_free(&params);
   sh_scene_free(s);
+  sh_error_clear(&err);
   return err_out;
 }
 

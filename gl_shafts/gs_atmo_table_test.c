@@ -80,7 +80,7 @@ static void geometry(void) {
 static void interpolation(const gs__atmo_source *src, const gs__atmo_shell *shell,
                           int n_r, int n_mu, double bound_tr, double bound_rel) {
   gs__atmo_table t;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = gs__atmo_table_build(&t, src, shell, n_r, n_mu, &err);
   SH_CHECK(st == SH_OK);
   if (st != SH_OK) return;
@@ -120,6 +120,7 @@ static void interpolation(const gs__atmo_source *src, const gs__atmo_shell *shel
   SH_CHECK(worst < bound_tr);
   SH_CHECK(worst_rel < bound_rel);
   gs__atmo_table_free(&t);
+  sh_error_clear(&err);
 }
 
 int main(void) {
@@ -156,7 +157,7 @@ int main(void) {
   {
     /* Texel values are the function's own. */
     gs__atmo_table t;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     SH_CHECK(gs__atmo_table_build(&t, &src, shell, 8, 16, &err) == SH_OK);
     double r, mu;
     gs__atmo_table_point(shell->r_ground, shell->r_top, 3 / 7.0, 5 / 15.0, &r, &mu);
@@ -165,6 +166,7 @@ int main(void) {
     SH_CHECK(rel(x, y) < 1e-6);
     gs__atmo_table_free(&t);
     SH_CHECK(gs__atmo_table_build(&t, &src, shell, 1, 16, &err) == SH_ERR_ARG);
+    sh_error_clear(&err);
   }
   /* gl_shafts' default table and a coarser one. */
   interpolation(&src, shell, 64, 256, 6e-3, 5e-2);

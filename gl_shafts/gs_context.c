@@ -89,18 +89,22 @@ sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err)
   gs__context *ctx = calloc(1, sizeof *ctx);
   if (!ctx) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
   pthread_mutex_init(&ctx->lock, NULL);
-  sh_error egl_err = {0}, osmesa_err = {0};
+  sh_error egl_err = SH_ERROR_INIT, osmesa_err = SH_ERROR_INIT;
   st = SH_ERR_DEVICE;
   if (want != GS_BACKEND_OSMESA) st = create_on(&gs__context_egl, ctx, &egl_err);
   if (st != SH_OK && st != SH_ERR_NOMEM && want != GS_BACKEND_EGL)
     st = create_on(&gs__context_osmesa, ctx, &osmesa_err);
   if (st == SH_OK) {
     *out = ctx;
-    return SH_OK;
+  } else {
+    pthread_mutex_destroy(&ctx->lock);
+    free(ctx);
   }
-  pthread_mutex_destroy(&ctx->lock);
-  free(ctx);
-  if (st == SH_ERR_NOMEM) return sh_error_set(err, st, "out of memory");
+  if (st == SH_OK || st == SH_ERR_NOMEM) {
+    sh_error_clear(&egl_err);
+    sh_error_clear(&osmesa_err);
+    return st == SH_OK ? SH_OK : sh_error_set(err, st, "out of memory");
+  }
   if (want == GS_BACKEND_EGL)
     st = sh_error_set(err, st, "the egl backend cannot give an OpenGL 4.5 core "
                       "context: %s", egl_err.message);
@@ -112,7 +116,9 @@ sh_status gs__context_create(gs_backend asked, gs__context **out, sh_error *err)
                       "(gl_shafts needs Mesa 20 or newer, or a GPU driver "
                       "with EGL); egl: %s; osmesa: %s",
                       egl_err.message, osmesa_err.message);
-  if (err) snprintf(err->path, sizeof err->path, "backend");
+  sh_error_set_key(err, "backend");
+  sh_error_clear(&egl_err);
+  sh_error_clear(&osmesa_err);
   return st;
 }
 

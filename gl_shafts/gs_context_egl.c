@@ -187,9 +187,10 @@ static int context_on(EGLDisplay dpy, const char *where, egl_impl *e, char *why,
          (unsigned)code);
     return 0;
   }
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (make_current(e, &err) != SH_OK) {
     note(why, why_size, "%s: %s", where, err.message);
+    sh_error_clear(&err);
     egl.DestroyContext(dpy, e->ctx);
     e->ctx = EGL_NO_CONTEXT;
     return 0;

@@ -116,7 +116,7 @@ sh_status gs_options_set(gs_options *opt, const char *key, const char *value,
   gs_options next = *opt;
   sh_status st = sh__options_set(options, NOPTIONS, &next, key, value, err);
   if (st == SH_OK && (st = gs_options_check(&next, err)) != SH_OK) {
-    if (err) snprintf(err->path, sizeof err->path, "%s", key);
+    sh_error_set_key(err, "%s", key);
     return st;
   }
   if (st == SH_OK) *opt = next;

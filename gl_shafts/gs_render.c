@@ -203,10 +203,8 @@ static sh_status check_light_count(const sh_scene *scene, sh_error *err) {
                               "docs/gl_shafts.md, 'Limits'); lmm_tracer has no such "
                               "limit",
                               scene->nlights, GS_MAX_LIGHTS);
-  if (err) {
-    snprintf(err->file, sizeof err->file, "%s", scene->file ? scene->file : "");
-    snprintf(err->path, sizeof err->path, "lights");
-  }
+  sh_error_set_file(err, scene->file);
+  sh_error_set_key(err, "lights");
   return st;
 }
 

@@ -63,7 +63,7 @@ static int located(const sh_error *err, sh_status st, const char *file, const ch
 }
 
 int main(void) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *many = scene_of(257, "many.json", &err);
   SH_CHECK(many != NULL);
   if (many) {
@@ -131,5 +131,6 @@ int main(void) {
   sh_image_free(&img);
   gs_renderer_free(r);
   sh_scene_free(s);
+  sh_error_clear(&err);
   SH_TEST_DONE();
 }

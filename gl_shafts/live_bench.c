@@ -254,13 +254,14 @@ int main(int argc, char **argv) {
   int nscenes = parsed.noperands, counting = a.counting;
   rc = 0;
   for (int i = 0; i < nscenes && rc == 0; i++) {
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     sh_status st = counting >= 0 ? count(scenes[i], counting, w, h, frames, backend, &err)
                                  : bench(scenes[i], w, h, frames, backend, &err);
     if (st != SH_OK) {
       sh_cli_error(TOOL, "%s: %s", scenes[i], err.message);
       rc = 1;
     }
+    sh_error_clear(&err);
   }
   return rc;
 }

@@ -98,11 +98,12 @@ static unsigned update(sh_scene *s, const params *p) {
   snprintf(patch, sizeof patch, "{%s, %s, %s, \"transforms\": %s}", camera, medium,
            lights, xf);
   unsigned changed = 0;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_scene_update(s, patch, "patch.json", &changed, &err) != SH_OK) {
     fprintf(stderr, "sh_scene_update: %s\n", err.message);
     return 0;
   }
+  sh_error_clear(&err);
   return changed;
 }
 
@@ -111,13 +112,14 @@ static int fresh(const sh_scene *s, int live, sh_image *img, gs_stats *st) {
   gs_options o = gs_options_defaults(s);
   o.live = live;
   gs_renderer *r = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs_renderer_create(s, &o, &r, &err) != SH_OK) {
     fprintf(stderr, "create: %s\n", err.message);
     return 0;
   }
   int ok = tu_draw(r, s, img, st);
   gs_renderer_free(r);
+  sh_error_clear(&err);
   return ok;
 }
 
@@ -129,7 +131,7 @@ static void step(const char *name, gs_renderer *r, sh_scene *s, const params *p,
                  unsigned expect, int structural) {
   unsigned changed = update(s, p);
   SH_CHECK((changed & expect) == expect);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs_renderer_sync(r, changed, &err) != SH_OK) {
     fprintf(stderr, "sync: %s\n", err.message);
     SH_CHECK(0);
@@ -149,6 +151,7 @@ static void step(const char *name, gs_renderer *r, sh_scene *s, const params *p,
   sh_image_free(&warm);
   sh_image_free(&ref);
   sh_scene_free(to);
+  sh_error_clear(&err);
 }
 
 /* A fresh live frame against a fresh baked one (options o, NULL: the
@@ -192,7 +195,7 @@ int main(void) {
   char path[1024];
   snprintf(path, sizeof path, "%s/scenes/teapot_spot.json", src ? src : "../..");
   sh_scene *teapot = NULL;
-  sh_error lerr;
+  sh_error lerr = SH_ERROR_INIT;
   SH_CHECK(sh_scene_load(path, &teapot, &lerr) == SH_OK);
   if (teapot) {
     teapot->camera.width = 80;
@@ -204,7 +207,7 @@ int main(void) {
   gs_options o = gs_options_defaults(s);
   o.live = 1;
   gs_renderer *r = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(gs_renderer_create(s, &o, &r, &err) == SH_OK);
   if (r) {
     sh_image first = {0}, again = {0};
@@ -276,5 +279,7 @@ int main(void) {
   }
   sh_image_free(&live);
   sh_scene_free(s);
+  sh_error_clear(&err);
+  sh_error_clear(&lerr);
   SH_TEST_DONE();
 }

@@ -144,7 +144,7 @@ static sh_stats *stats_record(const char *scene_path, const char *settings,
 static int finish(const sh_cli_render *r, const sh_scene *scene,
                   const gs_options *o, const sh_image *img,
                   const gs_stats *st) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_stats *settings = sh_stats_new();
   put_settings(settings, scene, o, st);
   char *settings_text = sh_stats_text(settings);
@@ -182,7 +182,7 @@ int main(int argc, char **argv) {
   sh_scene *scene;
   int rc = sh_cli_render_start(&tool, argc, argv, &r, &parsed, &scene);
   if (rc >= 0) return rc;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   gs_options opt = gs_options_defaults(scene);
   opt.crop = r.crop;
   if (sh_cli_apply(&tool, &parsed, &opt, &err) != SH_OK) {

@@ -127,7 +127,7 @@ static char *key_of_a_file(const char *dir, size_t *len) {
  * then each stage's sources, each followed by a NUL. */
 static void test_keys(const char *dir) {
   gs__context *ctx = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs__context_create(GS_BACKEND_AUTO, &ctx, &err) != SH_OK) {
     tu_check(0, "a GL context for the key tests");
     return;
@@ -203,6 +203,7 @@ static void test_keys(const char *dir) {
   free(drv);
   gs__context_release(ctx);
   gs__context_free(ctx);
+  sh_error_clear(&err);
 }
 
 /* Whether SHAFTS_PROGRAM_CACHE (or, unset, XDG_CACHE_HOME or HOME) gives

@@ -69,9 +69,10 @@ static gs_renderer *create(const sh_scene *s, int live) {
   gs_options o = gs_options_defaults(s);
   o.live = live;
   gs_renderer *r = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs_renderer_create(s, &o, &r, &err) != SH_OK)
     fprintf(stderr, "create: %s\n", err.message);
+  sh_error_clear(&err);
   return r;
 }
 
@@ -84,7 +85,7 @@ static int step(const char *name, gs_renderer *r, sh_scene *s, const params *p,
   members(p, m, sizeof m);
   snprintf(patch, sizeof patch, "{%s}", m);
   unsigned changed = 0;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_scene_update(s, patch, "patch.json", &changed, &err) == SH_OK);
   SH_CHECK(changed != 0);
   SH_CHECK(gs_renderer_sync(r, changed, &err) == SH_OK);
@@ -107,6 +108,7 @@ static int step(const char *name, gs_renderer *r, sh_scene *s, const params *p,
   sh_image_free(&ref);
   gs_renderer_free(f);
   sh_scene_free(to);
+  sh_error_clear(&err);
   return drawn;
 }
 

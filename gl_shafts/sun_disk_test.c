@@ -94,7 +94,7 @@ int main(void) {
   gs_options o = gs_options_defaults(without);
   o.live = 1;
   gs_renderer *r = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (gs_renderer_create(without, &o, &r, &err) != SH_OK) return 1;
   if (tu_draw(r, without, &go, NULL)) {
     unsigned changed = 0;
@@ -115,5 +115,6 @@ int main(void) {
   sh_image_free(&ro);
   sh_scene_free(with);
   sh_scene_free(without);
+  sh_error_clear(&err);
   return tu_failures != 0;
 }

@@ -8,11 +8,14 @@
 #include "sh_compare.h"
 #include "sh_parse.h"
 #include "sh_reference.h"
+#include "sh_str.h"
 
-static void report(const char *what, const sh_error *err) {
-  char buf[2048];
-  sh_error_format(err, buf, sizeof buf);
-  fprintf(stderr, "%s: %s\n", what, buf);
+/* Prints the whole error and clears it. */
+static void report(const char *what, sh_error *err) {
+  char *text = sh_error_text(err);
+  fprintf(stderr, "%s: %s\n", what, text ? text : err->message);
+  free(text);
+  sh_error_clear(err);
 }
 
 int tu_failures;
@@ -24,20 +27,18 @@ void tu_check(int cond, const char *what) {
 
 sh_scene *tu_scene(const char *json) {
   const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char dir[1024];
-  snprintf(dir, sizeof dir, "%s/scenes", src ? src : "../..");
+  char *dir = sh__printf_alloc("%s/scenes", src ? src : "../..");
   sh_scene *s = NULL;
-  sh_error err;
-  if (sh_scene_parse(json, "test.json", dir, &s, &err) != SH_OK) {
+  sh_error err = SH_ERROR_INIT;
+  if (dir && sh_scene_parse(json, "test.json", dir, &s, &err) != SH_OK)
     report("parsing a test scene", &err);
-    return NULL;
-  }
+  free(dir);
   return s;
 }
 
 sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out) {
   gs_options o = opt ? *opt : gs_options_defaults(scene);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = gs_render(scene, &o, out, NULL, &err);
   if (st != SH_OK) report("gl_shafts", &err);
   return st;
@@ -46,7 +47,7 @@ sh_status tu_gl(const sh_scene *scene, const gs_options *opt, sh_image *out) {
 sh_status tu_reference(const sh_scene *scene, int spp, sh_image *out) {
   sh_reference_options o = sh_reference_defaults(scene);
   o.spp = spp;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = sh_render_reference(scene, &o, out, NULL, &err);
   if (st != SH_OK) report("reference", &err);
   return st;
@@ -90,9 +91,10 @@ int tu_check_reference(const char *name, const sh_scene *s, int spp, double boun
 
 gs__context *tu_context(void) {
   gs__context *ctx = NULL;
-  sh_error err = {0};
+  sh_error err = SH_ERROR_INIT;
   if (gs__context_create(GS_BACKEND_AUTO, &ctx, &err) != SH_OK) {
     printf("FAIL: no GL context: %s\n", err.message);
+    sh_error_clear(&err);
     return NULL;
   }
   printf("backend %s, %s\n", gs__context_backend_name(ctx), gs__context_renderer(ctx));
@@ -100,10 +102,11 @@ gs__context *tu_context(void) {
 }
 
 int tu_draw(gs_renderer *r, const sh_scene *s, sh_image *img, gs_stats *stats) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_image_alloc(img, s->camera.width, s->camera.height, NULL) != SH_OK) return 0;
   if (gs_renderer_draw(r, img->rgb, stats, &err) != SH_OK) {
     fprintf(stderr, "draw: %s\n", err.message);
+    sh_error_clear(&err);
     return 0;
   }
   return 1;

@@ -62,10 +62,11 @@ static job make_job(gs_renderer *r, float *rgb) {
 
 static void *draw_job(void *arg) {
   job *j = arg;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   j->st = gs_renderer_draw(j->r, j->rgb, &j->stats, &err);
   if (j->st != SH_OK) fprintf(stderr, "draw: %s\n", err.message);
   j->released = none_current();
+  sh_error_clear(&err);
   return NULL;
 }
 
@@ -106,12 +107,13 @@ static void check_restores(gs_renderer *r, float *rgb) {
   EGLContext mine = create(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, NULL);
   tu_check(mine != EGL_NO_CONTEXT && make(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, mine),
         "the caller's own EGL context is current");
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = gs_renderer_draw(r, rgb, NULL, &err);
   tu_check(st == SH_OK, "draw while the caller has its own EGL context current");
   tu_check(current() == mine, "the caller's EGL context is current again after the draw");
   make(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   destroy(dpy, mine);
+  sh_error_clear(&err);
 }
 
 int main(void) {
@@ -133,7 +135,7 @@ int main(void) {
   float *here = calloc(n, sizeof *here), *there = calloc(n, sizeof *there);
   float *a = calloc(n, sizeof *a), *b = calloc(n, sizeof *b);
   gs_renderer *r = NULL, *r2 = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = gs_renderer_create(scene, NULL, &r, &err);
   if (st != SH_OK) {
     fprintf(stderr, "create: %s\n", err.message);
@@ -180,5 +182,6 @@ int main(void) {
   free(a);
   free(b);
   sh_scene_free(scene);
+  sh_error_clear(&err);
   return tu_failures ? 1 : 0;
 }

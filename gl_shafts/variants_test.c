@@ -45,13 +45,14 @@ static void print_defines(const char *text) {
 static void build(const gs__frame *fr, const char *pass, const gs__glsl *vs,
                   const gs__glsl *fs, gs__params *p) {
   GLuint prog = 0;
-  sh_error err = {0};
+  sh_error err = SH_ERROR_INIT;
   tried++;
   if (gs__program_use(fr->progs, vs, fs, p, &prog, &err) == SH_OK) return;
   failures++;
   printf("FAIL: the %s pass (%s + %s) with\n", pass, vs->name, fs->name);
   print_defines(p->text);
   printf("  %s\n", err.message);
+  sh_error_clear(&err);
 }
 
 /* Every pass a frame draws with light ls (and the unlit ones). */

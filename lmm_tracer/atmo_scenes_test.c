@@ -34,9 +34,10 @@ static int render(const char *scene, const char *name, sh_image *img) {
   int rc = system(cmd);
   SH_CHECK(rc == 0);
   if (rc != 0) return 0;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = sh_image_read(out, img, &err);
   SH_CHECK(st == SH_OK);
+  sh_error_clear(&err);
   return st == SH_OK;
 }
 

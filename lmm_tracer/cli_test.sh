@@ -85,4 +85,15 @@ idiff -fail 0 -failpercent 0 "$dir/cut.exr" "$dir/crop.exr" >/dev/null \
 # Pixels, not bytes: the EXR header carries the time of writing.
 idiff -fail 0 -failpercent 0 "$dir/a.exr" "$dir/b.exr" >/dev/null \
   || { echo "FAIL: same command, different image"; fail=1; }
+# A scene path of more than 5000 characters (25 nested directories of 199,
+# made one at a time: the whole path is longer than open(2) takes) is
+# named whole in the error, not cut (issue 11, kind 5).
+part=$(printf 'd%.0s' $(seq 199))
+long="$dir"
+(cd "$dir" && for i in $(seq 25); do mkdir "$part" && cd "$part" || exit 1; done && cp "$dir/good.json" scene.json) \
+  || { echo "FAIL: could not make the nested directories"; fail=1; }
+for i in $(seq 25); do long="$long/$part"; done
+long="$long/scene.json"
+"$tool" "$long" -o "$dir/long.exr" -q 2>"$dir/err"; check "a scene path of ${#long} characters" 2 $?
+message_has "the long path whole" "$dir/err" "lmm_tracer: error: $long: cannot open the scene file: File name too long"
 exit $fail

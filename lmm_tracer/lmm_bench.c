@@ -52,12 +52,13 @@ static sh_scene *table_scene(int nlights, int size) {
       "  {\"type\": \"box\", \"min\": [0.1, 1.38, -0.07], \"max\": [0.95, 1.52, 0.07],"
       "   \"material\": \"bar\"}]}");
   sh_scene *s = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_scene_parse(json, "bench.json", ".", &s, &err) != SH_OK) {
-    char buf[2048];
-    sh_error_format(&err, buf, sizeof buf);
-    fprintf(stderr, "lmm_bench: %s\n", buf);
+    char *text = sh_error_text(&err);
+    fprintf(stderr, "lmm_bench: %s\n", text ? text : err.message);
+    free(text);
   }
+  sh_error_clear(&err);
   free(json);
   return s;
 }

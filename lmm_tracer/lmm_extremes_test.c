@@ -23,10 +23,11 @@ static int render(const sh_scene *s, lmm_mode mode, sh_image *img) {
   o->mode = mode;
   o->spp = 16;
   o->seed = 1;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_status st = lmm_render(s, o, img->rgb, NULL, &err);
   if (st != SH_OK) fprintf(stderr, "render failed: %s\n", err.message);
   lmm_render_options_free(o);
+  sh_error_clear(&err);
   return st == SH_OK;
 }
 

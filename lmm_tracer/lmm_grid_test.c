@@ -17,7 +17,7 @@ static const char *scene_text =
 
 int main(void) {
   sh_scene *s = NULL;
-  sh_error err = {0};
+  sh_error err = SH_ERROR_INIT;
   if (sh_scene_parse(scene_text, "grid.json", ".", &s, &err) != SH_OK) {
     fprintf(stderr, "%s\n", err.message);
     SH_CHECK(!"scene parses");
@@ -47,5 +47,6 @@ int main(void) {
   SH_CHECK(lmm_grid_over_scene(s, 0.0, &g, &err) == SH_ERR_ARG);
   SH_CHECK(lmm_grid_over_scene(s, 1e-9, &g, &err) == SH_ERR_ARG);
   sh_scene_free(s);
+  sh_error_clear(&err);
   SH_TEST_DONE();
 }

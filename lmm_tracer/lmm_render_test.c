@@ -44,7 +44,7 @@ static void test_options(void) {
       {"speed", "1", "unknown option 'speed'; the options are: mode,"},
   };
   lmm_render_options o;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     lmm_render_options_init(&o);
     lmm_render_options before = o;
@@ -87,6 +87,7 @@ static void test_options(void) {
   SH_CHECK(lmm_render_options_check(&w, &err) == SH_ERR_ARG &&
            !strcmp(err.path, "kl") &&
            !strcmp(err.message, "kl needs mode lmm"));
+  sh_error_clear(&err);
 }
 
 /* Each mode equals sh_render_reference with the same hook. */
@@ -95,7 +96,7 @@ static void test_modes(const sh_scene *s) {
   float *rgb = malloc(sizeof *rgb * (size_t)n);
   lmm_render_options o;
   lmm_render_stats st;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_image ref = {0};
 
   lmm_render_options_init(&o);
@@ -134,6 +135,7 @@ static void test_modes(const sh_scene *s) {
   SH_CHECK(lmm_render(s, &o, rgb, &st, &err) == SH_ERR_ARG &&
            strstr(err.message, "needs mode lmm"));
   free(rgb);
+  sh_error_clear(&err);
 }
 
 /* Cancelled from the progress callback: SH_ERR_CANCELLED, the caller's
@@ -149,7 +151,7 @@ static void test_cancel(const sh_scene *s) {
   float *rgb = calloc((size_t)n, sizeof *rgb);
   volatile int cancel = 0;
   lmm_render_options *o = lmm_render_options_new();
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(lmm_render_stats_size() == sizeof(lmm_render_stats));
   lmm_render_options_set(o, "mode", "lmm", NULL);
   lmm_render_options_set_callbacks(o, stop, (void *)&cancel, &cancel);
@@ -159,6 +161,7 @@ static void test_cancel(const sh_scene *s) {
   SH_CHECK(zero);
   lmm_render_options_free(o);
   free(rgb);
+  sh_error_clear(&err);
 }
 
 /* A crop is the same region of the whole image to the bit, in every mode
@@ -170,7 +173,7 @@ static void test_crop(const sh_scene *s) {
   int cw = crop.x1 - crop.x0, ch = crop.y1 - crop.y0;
   float *full = malloc(sizeof *full * 3 * (size_t)w * h);
   float *part = malloc(sizeof *part * 3 * (size_t)cw * ch);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   for (int mode = 0; mode < 3 && full && part; mode++) {
     lmm_render_options o;
     lmm_render_stats st;
@@ -212,11 +215,12 @@ static void test_crop(const sh_scene *s) {
   }
   free(full);
   free(part);
+  sh_error_clear(&err);
 }
 
 int main(void) {
   sh_scene *s = NULL;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   SH_CHECK(sh_scene_parse(SCENE, "t.json", NULL, &s, &err) == SH_OK);
   test_options();
   if (s) {
@@ -225,5 +229,6 @@ int main(void) {
     test_cancel(s);
   }
   sh_scene_free(s);
+  sh_error_clear(&err);
   SH_TEST_DONE();
 }

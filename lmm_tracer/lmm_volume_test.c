@@ -37,7 +37,7 @@ static sh_scene *load(const char *name) {
 static int render_lmm(const sh_scene *s, const char *spp, sh_image *img) {
   lmm_render_options opt;
   lmm_render_options_init(&opt);
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (lmm_render_options_set(&opt, "mode", "lmm", &err) != SH_OK ||
       lmm_render_options_set(&opt, "spp", spp, &err) != SH_OK ||
       sh_image_alloc(img, s->camera.width, s->camera.height, &err) != SH_OK ||
@@ -45,6 +45,7 @@ static int render_lmm(const sh_scene *s, const char *spp, sh_image *img) {
     fprintf(stderr, "lmm_render: %s\n", err.message);
     return 0;
   }
+  sh_error_clear(&err);
   return 1;
 }
 
@@ -75,7 +76,7 @@ int main(void) {
     sh_image img = {0}, ref = {0};
     sh_reference_options ro = sh_reference_defaults(s);
     ro.spp = 64;
-    sh_error err;
+    sh_error err = SH_ERROR_INIT;
     SH_CHECK(sh_render_reference(s, &ro, &ref, NULL, &err) == SH_OK);
     SH_CHECK(render_lmm(s, "64", &img));
     sh_image_error e;
@@ -88,6 +89,7 @@ int main(void) {
     sh_image_free(&img);
     sh_image_free(&ref);
     sh_scene_free(s);
+    sh_error_clear(&err);
   }
   SH_TEST_DONE();
 }

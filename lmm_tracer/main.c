@@ -152,15 +152,16 @@ static void warn_noise(const lmm_render_stats *st) {
 /* An error about the renderer's options, which name them by key
  * ("area_radius needs mode whitted"), with the command line's names
  * ("--area-radius needs --mode whitted"). */
-static int report_options(const sh_error *err) {
-  char text[sizeof err->message + 256];
-  sh_cli_option_names(&tool, err->message, text, sizeof text);
-  sh_cli_error(TOOL, "%s", text);
+static int report_options(sh_error *err) {
+  char *text = sh_cli_option_names(&tool, err->message);
+  sh_cli_error(TOOL, "%s", text ? text : err->message);
+  free(text);
+  sh_error_clear(err);
   return SH_EXIT_BAD_INPUT;
 }
 
 int main(int argc, char **argv) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   lmm_render_options opt;
   lmm_render_options_init(&opt);
   lmm_render_options_init(&scratch);
@@ -176,6 +177,7 @@ int main(int argc, char **argv) {
     return SH_EXIT_BAD_INPUT;
   }
   sh_cli_apply(&tool, &parsed, &opt, &err); /* checked on scratch */
+  sh_error_clear(&err);
   opt.crop = r.crop;
   double exposure = sh_cli_render_exposure(&r, scene);
 

@@ -9,7 +9,7 @@
 #include "sh_test.h"
 
 static void render_one(const char *path) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *s = NULL;
   if (sh_scene_load(path, &s, &err) != SH_OK) {
     char buf[2048];
@@ -36,6 +36,7 @@ static void render_one(const char *path) {
   SH_CHECK(sum > 0);
   sh_image_free(&img);
   sh_scene_free(s);
+  sh_error_clear(&err);
 }
 
 int main(void) {

@@ -119,7 +119,7 @@ int main(int argc, char **argv) {
 
   sh_scene *scene = NULL;
   if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], 0, &scene))) return rc;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   se_notes notes = {0};
   se_frame frame;
   sh_status st = se_export_scene(scene, target, &opt, a.output, a.strict, &notes,
@@ -136,6 +136,7 @@ int main(int argc, char **argv) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: error: --strict: %s\n", TOOL, notes.text[i]);
     fprintf(stderr, "%s: error: --strict: %s\n", TOOL, err.message);
+    sh_error_clear(&err);
     rc = SH_EXIT_BAD_INPUT;
   } else {
     rc = sh_cli_report(TOOL, &err);

@@ -168,7 +168,7 @@ static void compare(const sh_scene *a, const sh_scene *b) {
 
 /* Exports `path` to JSON in `dir`, reloads it and compares. */
 static void roundtrip(const char *path, const char *dir) {
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   sh_scene *a = NULL, *b = NULL;
   if (sh_scene_load(path, &a, &err) != SH_OK) {
     char buf[1200];
@@ -196,6 +196,7 @@ static void roundtrip(const char *path, const char *dir) {
   se_output_free(&o);
   sh_scene_free(a);
   sh_scene_free(b);
+  sh_error_clear(&err);
 }
 
 static void scenes_in(const char *dir, const char *tmp, int *count) {

@@ -51,7 +51,8 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
  * --strict, discarding the notes (the Blender data file keeps them).
  * `target` is a target's name ("pov", "blender", "json"); `quality` 0 is
  * draft, 1 final. The entry point for callers that cannot build C structs
- * (ctypes): the error is read back with sh_error_format. */
+ * (ctypes): the error is read back with sh_error_new's accessors
+ * (shafts.h). */
 sh_status se_export_file(const char *scene_path, const char *target, int quality,
                          const char *out_path, sh_error *err);
 

@@ -170,7 +170,7 @@ int main(int argc, char **argv) {
    * all. */
   sh_outputs *set;
   if ((rc = sh_cli_files(TOOL, NULL, &set))) return rc;
-  sh_error err;
+  sh_error err = SH_ERROR_INIT;
   if (sh_outputs_input(set, a.ref, "the reference", &err) != SH_OK ||
       sh_outputs_input(set, a.img, "the image", &err) != SH_OK) {
     sh_outputs_free(set);
