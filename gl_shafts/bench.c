@@ -23,6 +23,7 @@
 #include "sh_parse.h"
 #include "sh_progress.h"
 #include "sh_reference.h"
+#include "sh_str.h"
 
 static const char *const TOOL = "gl_shafts_bench";
 
@@ -119,11 +120,15 @@ static sh_status reference(const sh_scene *scene, const char *path, int spp,
                            const char *cache, sh_image *ref, sh_error *err) {
   const char *base = strrchr(path, '/');
   base = base ? base + 1 : path;
-  char name[1024];
-  snprintf(name, sizeof name, "%s/%.*s_%dx%d_spp%d_%016llx.exr", cache,
-           (int)(strlen(base) > 5 ? strlen(base) - 5 : strlen(base)), base,
-           scene->camera.width, scene->camera.height, spp, file_hash(path));
-  if (sh_image_read(name, ref, NULL) == SH_OK) return SH_OK;
+  char *name = sh__printf_alloc(
+      "%s/%.*s_%dx%d_spp%d_%016llx.exr", cache,
+      (int)(strlen(base) > 5 ? strlen(base) - 5 : strlen(base)), base,
+      scene->camera.width, scene->camera.height, spp, file_hash(path));
+  if (!name) return sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+  if (sh_image_read(name, ref, NULL) == SH_OK) {
+    free(name);
+    return SH_OK;
+  }
   fprintf(stderr, "%s: rendering the reference %s (%d spp)...\n", TOOL, name, spp);
   sh_reference_options opt = sh_reference_defaults(scene);
   opt.spp = spp;
@@ -134,6 +139,7 @@ static sh_status reference(const sh_scene *scene, const char *path, int spp,
   sh_status st = sh_render_reference(scene, &opt, ref, NULL, err);
   sh_progress_finish(&bar);
   if (st == SH_OK) st = sh_image_write(name, ref, 0, err);
+  free(name);
   return st;
 }
 
@@ -204,13 +210,17 @@ static sh_status run(const char *path, sh_scene *scene,
            m->fragments / 1e6, err_col, bias_col, m->backend, m->renderer, m->vendor);
     fflush(stdout);
     if (diffdir && ref && st == SH_OK) {
-      char name[1024];
-      snprintf(name, sizeof name, "%s/%.*s_p%d_l%d_%s.exr", diffdir,
-               (int)strlen(base) - 5, base, o.planes, o.lattice_u,
-               gs_option_name("xi", o.xi));
-      st = sh_image_write(name, &img, 0, err);
-      memcpy(name + strlen(name) - 4, "_dif.exr", 9);
-      if (st == SH_OK) st = sh_image_write(name, &d, 0, err);
+      const char *xi = gs_option_name("xi", o.xi);
+      int stem = (int)strlen(base) - 5;
+      char *name = sh__printf_alloc("%s/%.*s_p%d_l%d_%s.exr", diffdir, stem, base,
+                                    o.planes, o.lattice_u, xi);
+      char *dif = sh__printf_alloc("%s/%.*s_p%d_l%d_%s_dif.exr", diffdir, stem,
+                                   base, o.planes, o.lattice_u, xi);
+      st = name && dif ? sh_image_write(name, &img, 0, err)
+                       : sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+      if (st == SH_OK) st = sh_image_write(dif, &d, 0, err);
+      free(name);
+      free(dif);
     }
     sh_image_free(&d);
   }

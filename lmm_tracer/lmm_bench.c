@@ -360,8 +360,11 @@ int main(int argc, char **argv) {
   area_quality(quick ? 96 : 256);
   ceiling(quick ? 128 : 512);
   const char *src = getenv("SHAFTS_SOURCE_DIR");
-  char path[1024];
-  snprintf(path, sizeof path, "%s/scenes/teapot_spot.json", src ? src : ".");
+  size_t n = strlen(src ? src : ".") + sizeof "/scenes/teapot_spot.json";
+  char *path = malloc(n);
+  if (!path) return 1;
+  snprintf(path, n, "%s/scenes/teapot_spot.json", src ? src : ".");
   volume(path, quick);
+  free(path);
   return 0;
 }

@@ -124,6 +124,12 @@ mkdir -p "$long"
 [ -s "$long/g_map0.exr" ] && [ -s "$long/g.pov" ] && [ -s "$long/g.ini" ] \
   || { echo "FAIL: the long-path export: $(ls "$long")"; fail=1; }
 [ "$(find "$out" -type f | wc -l)" = 3 ] || { echo "FAIL: long-path export files: $(find "$out" -type f)"; fail=1; }
+# ...and so does the Blender export (se_blender.c's light map path had
+# the same buffers).
+"$tool" "$data/spot_gobo.json" --to blender -o "$long/g.py" 2>/dev/null; check "a 1500-character path, blender" 0 $?
+[ -s "$long/g_blender_map0.exr" ] && [ -s "$long/g_blender_eevee_map0.exr" ] && [ -s "$long/g.py" ] && [ -s "$long/g.blender.json" ] \
+  || { echo "FAIL: the long-path blender export: $(ls "$long")"; fail=1; }
+[ "$(find "$out" -type f | wc -l)" = 7 ] || { echo "FAIL: long-path export files: $(find "$out" -type f)"; fail=1; }
 rm -rf "$out"/d*
 # The JSON export names files relative to itself: written elsewhere, it
 # carries copies of the scene's files and loads from there; a scene file

@@ -144,13 +144,20 @@ static sh_image *spot_profile_image(const sh_light *l, double *k) {
  * if out of memory. */
 static int add_image(blend *b, const char *stem, int i, const sh_image *img, sh_image *owned,
                      json_t *images) {
-  char file[600], path[1200];
-  snprintf(file, sizeof file, "%s_%s%d.exr", b->name, stem, i);
-  snprintf(path, sizeof path, "%.*s%s", b->dir_len, b->dir, file);
-  if (!(owned ? se_output_owned_image(b->out, path, owned) : se_output_image(b->out, path, img)))
-    return -1;
-  json_array_append_new(images, json_pack("{s:s}", "file", file));
-  return (int)json_array_size(images) - 1;
+  /* Heap strings: a fixed buffer cut a long path to another file's name
+   * (issue 11, kind 5). */
+  char *file = se_printf_alloc("%s_%s%d.exr", b->name, stem, i);
+  char *path = file ? se_printf_alloc("%.*s%s", b->dir_len, b->dir, file) : NULL;
+  int ok = path && (owned ? se_output_owned_image(b->out, path, owned)
+                          : se_output_image(b->out, path, img));
+  if (!path && owned) { /* as se_output_owned_image does on failure */
+    sh_image_free(owned);
+    free(owned);
+  }
+  if (ok) json_array_append_new(images, json_pack("{s:s}", "file", file));
+  free(file);
+  free(path);
+  return ok ? (int)json_array_size(images) - 1 : -1;
 }
 
 /* Adds light l's card with the given image to the data's cards, for one
