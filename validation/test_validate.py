@@ -378,6 +378,14 @@ class SweepTest(unittest.TestCase):
         fog = verdicts.features(json.loads((ROOT / "scenes/valley_fog.json").read_text()))
         self.assertIn("medium:height_fog", fog)
         self.assertEqual(verdicts.causes("povray", fog), [])
+        # The add-on reads height fog and the atmosphere exactly (their
+        # phases too); only a homogeneous medium's phase goes through
+        # Cycles' lobes.
+        self.assertEqual(verdicts.causes("addon_tracer", feats), [])
+        self.assertEqual(verdicts.causes("addon_tracer", fog), [])
+        box = {"medium": {"phase": {"type": "nishita_hazy"}}}
+        self.assertEqual(verdicts.causes("addon_tracer", verdicts.features(box)),
+                         ["Nishita hazy phase exported as one HG lobe, g 0.4"])
 
     def test_command_line_in_summary(self):
         from . import validate
