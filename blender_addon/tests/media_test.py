@@ -185,6 +185,7 @@ scene = sun_in_height_fog()
 scene.render.resolution_x, scene.render.resolution_y = W, H
 exported = t.export_files(scene, out / "scratch.json")
 m = exported.scene.get("medium", {})
+mat = bpy.data.materials["Fog"]
 t.check(m.get("type") == "height_fog" and abs(m.get("scale_height", 0) - 1.0) < 1e-6
         and abs(m["sigma_s"][0] - 0.3) < 1e-6 and m["phase"] == {
             "type": "henyey_greenstein", "g": m["phase"].get("g")}
@@ -204,6 +205,35 @@ px = px.reshape(H, W, 4)[:, :, :3].mean(axis=(1, 2))  # rows, bottom first
 low, high = float(px[7]), float(px[17])
 t.check(low > 2.0 * high > 0, "from scratch: fog near the base (row mean %.4g) is brighter "
         "than near the top (%.4g)" % (low, high))
+
+# The Shafts Medium panel draws, for each kind, only properties the
+# settings have (a recording layout stands in for Blender's, which a
+# background Blender has no window for).
+class Layout:
+    def __init__(self, drawn):
+        self.drawn, self.active = drawn, True
+        self.use_property_split = self.use_property_decorate = False
+
+    def column(self, heading=None):
+        return self
+
+    def prop(self, settings, name):
+        getattr(settings, name)
+        self.drawn.append(name)
+
+
+class Context:
+    material = mat
+
+
+panel = bpy.types.SHAFTS_PT_medium
+for k in ('NODES', 'HEIGHT_FOG', 'ATMOSPHERE'):
+    mat.shafts_medium.kind = k
+    drawn = []
+    stand_in = type("P", (), {"layout": Layout(drawn), "KINDS": panel.KINDS})()
+    panel.draw(stand_in, Context)
+    t.check(drawn[0] == "kind" and (len(drawn) > 5) == (k != 'NODES'),
+            "the Shafts Medium panel draws %s: %s" % (k, ", ".join(drawn)))
 
 for name, engine, rel, mean in figures:
     print("figure: %s %s rel RMS %.4g mean rel %.4g" % (name, engine, rel, mean))
