@@ -1,7 +1,9 @@
 """Non-uniform media through Blender (docs/blender.md, "Media").
 
-1. Round trip: valley_fog (height fog), sky_sunset and earth_from_space
-   (atmospheres, which scene_export puts in a frame scaled by 1e-4) are
+1. Round trip: valley_fog (height fog), valley_fog_far (the same shrunk
+   by 1e-9 and moved away, which scene_export's writer scales by 1e8 and
+   moves back), sky_sunset and earth_from_space (atmospheres, kept in
+   kilometres) are
    imported as scene_export's Blender writer builds them (File > Import,
    blender_build.build_into), and the add-on's export of that Blender scene
    has the scene's medium back: every number equal to the scene's mapped
@@ -41,12 +43,19 @@ SPP = 8
 REL = 1e-12
 # engine -> scene -> largest relative RMS between F12 of the imported scene
 # and the engine's CLI on the scene file (see the docstring).
-# Measured (32x24, 8 spp): the tracer 9.4e-6, 5.4e-7, 1.7e-7; the sweep
-# 4.8e-3 (the heightfield as Blender's triangles), 1.4e-6, 3.7e-5.
+# Measured (32x24, 8 spp; valley_fog, valley_fog_far, sky_sunset,
+# earth_from_space): the tracer 9.4e-6, 9.4e-6, 5.4e-7, 1.7e-7; the sweep
+# 4.8e-3, 4.7e-3 (the heightfield as Blender's triangles), 1.4e-6, 2.9e-5.
 BOUNDS = {
-    "SHAFTS_TRACER": {"valley_fog": 1e-4, "sky_sunset": 1e-4, "earth_from_space": 1e-4},
-    "SHAFTS_SWEEP": {"valley_fog": 0.015, "sky_sunset": 1e-4, "earth_from_space": 5e-4},
+    "SHAFTS_TRACER": {"valley_fog": 1e-4, "valley_fog_far": 1e-4, "sky_sunset": 1e-4,
+                      "earth_from_space": 1e-4},
+    "SHAFTS_SWEEP": {"valley_fog": 0.015, "valley_fog_far": 0.015, "sky_sunset": 1e-4,
+                     "earth_from_space": 5e-4},
 }
+# The frame scene_export chooses at the scenes' own sizes.
+# (The atmospheres keep kilometres: the air 10 to 100 units thick.)
+FRAME_SCALE = {"valley_fog": 1.0, "valley_fog_far": 1e8, "sky_sunset": 1.0,
+               "earth_from_space": 1.0}
 CLI = {
     "SHAFTS_TRACER": [t.tool("lmm_tracer", "lmm_tracer"), "-q", "--spp", SPP, "--seed", 0],
     "SHAFTS_SWEEP": [t.tool("gl_shafts", "gl_shafts"), "-q"],
@@ -54,14 +63,38 @@ CLI = {
 out = t.SCRATCH
 
 
+# valley_fog_far: valley_fog with every length times 1e-9 and moved by
+# OFFSET, which scene_export's Blender writer moves back and scales by 1e8
+# (se_scale.h): the frame the import must undo.
+SHRINK, OFFSET = 1e-9, (3e-6, 2e-6, -1e-6)
+
+
+def far(data):
+    P = lambda p: [x * SHRINK + o for x, o in zip(p, OFFSET)]
+    data["camera"]["position"] = P(data["camera"]["position"])
+    data["camera"]["look_at"] = P(data["camera"]["look_at"])
+    m = data["medium"]
+    m["sigma_s"] = [x / SHRINK for x in m["sigma_s"]]
+    m["sigma_a"] = [x / SHRINK for x in m["sigma_a"]]
+    m["base_height"] = m["base_height"] * SHRINK + OFFSET[1]
+    m["scale_height"] *= SHRINK
+    m["bounds"] = {"min": P(m["bounds"]["min"]), "max": P(m["bounds"]["max"])}
+    for shape in data["shapes"]:
+        shape["min"], shape["max"] = P(shape["min"]), P(shape["max"])
+    return data
+
+
 def tiny(name):
-    """The scene file at W x H in SCRATCH, its files copied beside it."""
+    """The scene file in SCRATCH, its files copied beside it. Its own size
+    stays (scene_export chooses its frame from what the image needs,
+    se_scale.h); the renders are made at W x H."""
     import shutil
-    data = json.loads((SCENES / (name + ".json")).read_text())
-    data["camera"]["width"], data["camera"]["height"] = W, H
+    data = json.loads((SCENES / (name.replace("_far", "") + ".json")).read_text())
+    if name.endswith("_far"):
+        data = far(data)
     for shape in data.get("shapes", []):
         for key in ("image", "file"):
-            if key in shape:
+            if key in shape and not (out / shape[key]).exists():
                 (out / shape[key]).parent.mkdir(parents=True, exist_ok=True)
                 shutil.copyfile(SCENES / shape[key], out / shape[key])
     path = out / (name + ".json")
@@ -100,6 +133,7 @@ def expected_medium(m, coll):
     s = coll["shafts_scale"]
     o = list(coll["shafts_origin"])
     t.check(coll["shafts_axes"] == "+x -z +y", "the frame's axes are the standard ones")
+    t.check(FRAME_SCALE[name] == 1.0 or any(o), "the frame moves the scene (%s)" % o)
     L = lambda x: x * s
     C = lambda v: [x / s for x in v]
     P = lambda p: [(x - y) * s for x, y in zip(p, o)]
@@ -129,11 +163,14 @@ def fresh_scene(name):
 
 
 figures = []
-for name in ("valley_fog", "sky_sunset", "earth_from_space"):
+for name in ("valley_fog", "valley_fog_far", "sky_sunset", "earth_from_space"):
     path, data = tiny(name)
     scene = fresh_scene(name)
     importer.import_scene(bpy.context, str(path))
     coll = bpy.data.collections[name]
+    scene.render.resolution_x, scene.render.resolution_y = W, H
+    t.check(coll["shafts_scale"] == FRAME_SCALE[name], "%s: imported at %g a scene unit "
+            "(the writer's frame)" % (name, coll["shafts_scale"]))
     exported = t.export_files(scene, out / (name + "_blender.json"), size=(W, H))
     m = exported.scene.get("medium", {})
     want = expected_medium(data["medium"], coll)
@@ -158,7 +195,7 @@ for name in ("valley_fog", "sky_sunset", "earth_from_space"):
         argv = list(cli)
         if engine == "SHAFTS_TRACER":
             argv += ["--max-depth", scene.shafts_tracer.max_depth]
-        t.run(*argv, path, "-o", theirs)
+        t.run(*argv, path, "--width", W, "--height", H, "-o", theirs)
         d = t.compare(str(theirs), str(mine), diff=str(out / ("%s_%s_diff.png" % (name, engine))))
         bound = BOUNDS[engine][name]
         figures.append((name, engine, d["rel_rms"], d["mean_rel"]))
@@ -169,7 +206,24 @@ for name in ("valley_fog", "sky_sunset", "earth_from_space"):
                 "(rel RMS %.4g, mean rel %.4g)" % (name, engine, bound, d["rel_rms"],
                                                     d["mean_rel"]))
 
-    if want["type"] == "height_fog":
+    # The viewport's patches carry an edit of the properties, and the
+    # library takes them.
+    from shafts_blender import convert, shafts  # noqa: E402
+    live = convert.export_scene(bpy.context.evaluated_depsgraph_get(), size=(W, H))
+    lib_scene = shafts.Scene.from_json(live.text, meshes=live.meshes)
+    medium_mat = next(o for o in coll.objects if o.name.startswith("medium")
+                      ).material_slots[0].material
+    key = "scale_height" if want["type"] == "height_fog" else "rayleigh_scale_height"
+    setattr(medium_mat.shafts_medium, key, 2.5)
+    patch = convert.export_patch(bpy.context.evaluated_depsgraph_get(), live, size=(W, H))
+    got_h = None if patch is None else (patch["medium"].get("scale_height") or
+                                        patch["medium"]["rayleigh"]["scale_height"])
+    t.check(got_h is not None and abs(got_h - 2.5 * coll["shafts_scale"]) < 1e-9,
+            "%s: a patch carries an edit of %s (%s)" % (name, key, got_h))
+    if patch is not None:
+        lib_scene.update(json.dumps(patch))
+    lib_scene.close()
+    if name == "valley_fog":
         # 4. Without the properties the node graph is read, as before: a
         # homogeneous medium, with a warning for the linked density.
         air = next(o for o in coll.objects if o.name.startswith("medium"))
