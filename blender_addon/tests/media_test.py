@@ -20,7 +20,8 @@
    material's properties say height fog (scenes.sun_in_height_fog),
    exports height fog with the properties' numbers, and the tracer's F12
    of it shows the density falling with height (a row of fog near the base
-   more than twice as bright as one near the top).
+   more than twice as bright as one near the top); tools/blend2shafts,
+   whose Blender has not enabled the add-on, reads the saved properties.
 """
 import json
 import math
@@ -245,6 +246,13 @@ t.check(m.get("type") == "height_fog" and abs(m.get("scale_height", 0) - 1.0) < 
             "type": "henyey_greenstein", "g": m["phase"].get("g")}
         and abs(m["phase"]["g"] - 0.3) < 1e-6,
         "from scratch: the properties' height fog is exported (%s)" % json.dumps(m))
+# tools/blend2shafts, which runs the converter in a Blender without the
+# add-on enabled, reads the saved properties too.
+bpy.ops.wm.save_as_mainfile(filepath=str(out / "scratch.blend"), copy=True)
+t.run(str(REPO / "tools" / "blend2shafts"), out / "scratch.blend", out / "scratch_cli.json")
+cli_medium = json.loads((out / "scratch_cli.json").read_text()).get("medium", {})
+t.check(cli_medium.get("type") == "height_fog" and cli_medium.get("scale_height") == 1.0,
+        "blend2shafts reads the saved properties (%s)" % json.dumps(cli_medium))
 scene.render.engine = "SHAFTS_TRACER"
 scene.shafts_tracer.spp = SPP
 img = out / "scratch_tracer.exr"

@@ -3,6 +3,7 @@
 
     blender -b FILE.blend --python-exit-code 1 --python cli.py -- FILE.blend OUT.json
 
+registers the add-on's properties (properties.py) unless the add-on did,
 exports the scene (export_scene, files.write_files) and prints the
 approximations on stderr. Exit status: 0; 2 if Blender did not open FILE.blend
 or OUT.json is not a writable .json path; 1 if writing fails (nothing is
@@ -15,8 +16,18 @@ def main():
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.dirname(
         os.path.abspath(__file__)))))
     import bpy
+    from shafts_blender import properties
     from shafts_blender.convert import files
     from shafts_blender.convert.scene import export_scene
+
+    # The add-on's settings (a material's Shafts Medium above all) are read
+    # through their property groups, which a Blender without the add-on
+    # enabled has not registered: the .blend keeps them as plain ID
+    # properties until these are.
+    if not hasattr(bpy.types.Material, "shafts_medium"):
+        for cls in properties.classes:
+            bpy.utils.register_class(cls)
+        properties.register()
 
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     if len(argv) != 2:
