@@ -40,7 +40,8 @@ test: build
 test-asan: bootstrap
 	cmake -S . -B $(BUILD)-asan -DSHAFTS_WERROR=ON -DSHAFTS_SANITIZE=ON
 	cmake --build $(BUILD)-asan -j $(JOBS)
-	cd $(BUILD)-asan && ctest --output-on-failure -j $(JOBS)
+	cd $(BUILD)-asan && LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp \
+	  ctest --output-on-failure -j $(JOBS)
 
 fuzz: bootstrap
 	CC=clang CXX=clang++ cmake -S . -B $(BUILD)-fuzz -DSHAFTS_FUZZ=ON

@@ -6,7 +6,8 @@ definition of error of the project.
 
   python3 -m validation.peers [--build-dir DIR] [--targets pov,cycles,eevee]
       [--set tests|canonical|all] [--scenes a,b] [--cache DIR]
-      [--ref-spp N] [--samples N] [--check] [--markdown FILE] [--json FILE]
+      [--ref-spp N] [--samples N] [--check] [--list] [--markdown FILE]
+      [--json FILE]
 
 For each scene: the reference (lmm_tracer --mode reference, 1024 samples),
 the target's rendering, and their comparison over the lit region (the
@@ -156,6 +157,18 @@ def within(result, bound):
             and abs(result["ratio"] - 1.0) <= bound["ratio"])
 
 
+def names_for(which, target, check):
+    """The scene names `--check` (or a plain run) measures for one target,
+    in order, without preparing or rendering anything (for --list)."""
+    names = []
+    if which in ("tests", "all"):
+        names += [n for n, kinds in TEST_SCENES.items()
+                  if not (check and kinds.get(target, "report") == "report")]
+    if which in ("canonical", "all") and not check:
+        names += CANONICAL_SCENES
+    return names
+
+
 def scenes_for(which, cache_root):
     """(prepared scene, {target: kind}) pairs of a set."""
     items = []
@@ -232,6 +245,9 @@ def parse(argv):
     ap.add_argument("--check", action="store_true",
                     help="only the scenes the targets are bounded on; exit 1 if one "
                          "is outside its bound")
+    ap.add_argument("--list", action="store_true",
+                    help="print the names of the scenes the run would measure, one a "
+                         "line, and render nothing (CTest registers one test a scene)")
     ap.add_argument("--markdown")
     ap.add_argument("--json")
     ap.add_argument("-q", "--quiet", action="store_true")
@@ -244,6 +260,13 @@ def parse(argv):
 
 def main(argv=None):
     args = parse(argv)
+    if args.list:
+        keep = set(filter(None, args.scenes.split(",")))
+        for target in args.targets.split(","):
+            for name in names_for(args.set, target, args.check):
+                if not keep or name in keep:
+                    print(name)
+        return 0
     say = (lambda m: None) if args.quiet else (lambda m: print(m, flush=True))
     ctx = renderers.Context(ROOT, args.build_dir, mode="quick", say=say)
     for adapter in [renderers.REFERENCE] + [renderers.by_name(ADAPTER_NAMES[t])[0]
