@@ -19,23 +19,16 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=$root/build frames=10 spp=256 ew=320 eh=240 sweep=4,8,16,32
-while [ $# -gt 0 ]; do
+bench_option() {
   case $1 in
-    --build) build=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --ref-spp) spp=$2; shift 2 ;;
-    --err-size) ew=$2; eh=$3; shift 3 ;;
-    --sweep) sweep=$2; shift 2 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
-    *) echo "atmo_bench.sh: unknown argument '$1'" >&2; exit 2 ;;
+    --err-size) ew=$2; eh=$3; bench_shift=3 ;;
+    --sweep) sweep=$2; bench_shift=2 ;;
+    *) return 1 ;;
   esac
-done
-bench=$build/gl_shafts/gl_shafts_bench
-[ -x "$bench" ] || { echo "atmo_bench.sh: build first: $bench is missing" >&2; exit 2; }
-cache=$build/gl_shafts_refs
-mkdir -p "$cache"
+}
+. "$here/bench_lib.sh"
+bench_setup atmo_bench.sh 2,17 "$@"
 scenes=("$root/scenes/sky_sunset.json" "$root/scenes/earth_from_space.json")
-echo "machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%FT%TZ), $(git -C "$root" rev-parse --short HEAD)"
 echo
 echo "### Speed at 640x480, defaults (planes: the sampling planes, or spheres from space; lattice and planes ms: the layers on the lattice and the full-resolution passes)"
 echo

@@ -18,34 +18,26 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
-build=$root/build frames=10 spp=512 sweeps=0 backend=auto backends=0
-while [ $# -gt 0 ]; do
+build=$root/build w=640 h=480 frames=10 spp=512 sweeps=0 backend=auto backends=0
+bench_option() {
   case $1 in
-    --build) build=$2; shift 2 ;;
-    --frames) frames=$2; shift 2 ;;
-    --ref-spp) spp=$2; shift 2 ;;
-    --sweeps) sweeps=1; shift ;;
-    --backend) backend=$2; shift 2 ;;
-    --backends) backends=1; shift ;;
-    -h|--help) sed -n '2,16p' "$0"; exit 0 ;;
-    *) echo "bench.sh: unknown argument '$1'" >&2; exit 2 ;;
+    --sweeps) sweeps=1; bench_shift=1 ;;
+    --backend) backend=$2; bench_shift=2 ;;
+    --backends) backends=1; bench_shift=1 ;;
+    *) return 1 ;;
   esac
-done
-bench=$build/gl_shafts/gl_shafts_bench
-[ -x "$bench" ] || { echo "bench.sh: build first: $bench is missing" >&2; exit 2; }
-cache=$build/gl_shafts_refs
-mkdir -p "$cache"
+}
+. "$here/bench_lib.sh"
+bench_setup bench.sh 2,16 "$@"
 scenes=()
 for s in teapot_spot stage_5spots mountains_sun stained_glass; do
   scenes+=("$root/scenes/$s.json")
 done
 run() {
-  "$bench" --size 640 480 --frames "$frames" --ref-spp "$spp" --cache "$cache" \
+  "$bench" --size "$w" "$h" --frames "$frames" --ref-spp "$spp" --cache "$cache" \
     --backend "$backend" "$@"
 }
 
-echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
-     "$(date -u +%Y-%m-%dT%H:%MZ)"
 if [ "$backends" = 1 ]; then
   echo
   echo "### Defaults, 640x480, per backend"

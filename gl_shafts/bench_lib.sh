@@ -5,7 +5,11 @@
 # stand otherwise; w and h empty: the scenes' sizes), -h prints the lines
 # HELP_LINES (a sed range such as 2,15) of the script; then finds
 # gl_shafts_bench (bench), makes the references' cache (cache) and prints
-# the machine's line. bench_run ARGS... runs gl_shafts_bench with them.
+# the machine's line. A script with options of its own defines
+# bench_option, called with the arguments left: it sets its variables,
+# sets bench_shift to the number of arguments it took and returns 0, or
+# returns 1 for an argument it does not know. bench_run ARGS... runs
+# gl_shafts_bench with them.
 bench_setup() {
   local name=$1 help=$2 script=$0
   shift 2
@@ -16,7 +20,13 @@ bench_setup() {
       --frames) frames=$2; shift 2 ;;
       --ref-spp) spp=$2; shift 2 ;;
       -h|--help) sed -n "${help}p" "$script"; exit 0 ;;
-      *) echo "$name: unknown argument '$1'" >&2; exit 2 ;;
+      *)
+        bench_shift=0
+        if declare -F bench_option >/dev/null && bench_option "$@"; then
+          shift "$bench_shift"
+        else
+          echo "$name: unknown argument '$1'" >&2; exit 2
+        fi ;;
     esac
   done
   bench=$build/gl_shafts/gl_shafts_bench

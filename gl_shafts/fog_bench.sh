@@ -20,21 +20,14 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/.." && pwd)
 build=$root/build w=320 h=240 frames=10 spp=1024 part=all
-while [ $# -gt 0 ]; do
+bench_option() {
   case $1 in
-    --build) build=$2; shift 2 ;;
-    --size) w=$2; h=$3; shift 3 ;;
-    --frames) frames=$2; shift 2 ;;
-    --ref-spp) spp=$2; shift 2 ;;
-    --part) part=$2; shift 2 ;;
-    -h|--help) sed -n '2,17p' "$0"; exit 0 ;;
-    *) echo "fog_bench.sh: unknown argument '$1'" >&2; exit 2 ;;
+    --part) part=$2; bench_shift=2 ;;
+    *) return 1 ;;
   esac
-done
-bench=$build/gl_shafts/gl_shafts_bench
-[ -x "$bench" ] || { echo "fog_bench.sh: build first: $bench is missing" >&2; exit 2; }
-cache=$build/gl_shafts_refs
-mkdir -p "$cache"
+}
+. "$here/bench_lib.sh"
+bench_setup fog_bench.sh 2,17 "$@"
 fog=$root/scenes/valley_fog.json
 # The derived scenes live in a directory of their own under the build tree,
 # with a copy of the heightfield (a scene names only files in its own tree).
@@ -47,8 +40,6 @@ grep -q height_fog "$twin" && { echo "fog_bench.sh: the twin kept its type" >&2;
 run() {
   "$bench" --size "$w" "$h" --frames "$frames" --ref-spp "$spp" --cache "$cache" "$@"
 }
-echo "machine: $(nproc) CPUs, load average $(cut -d' ' -f1-3 /proc/loadavg)," \
-     "$(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD)"
 if [ "$part" != side ]; then
   echo
   echo "### Defaults, ${w}x${h}: height fog and its homogeneous twin"
