@@ -260,8 +260,15 @@ def parse(argv):
 
 def main(argv=None):
     args = parse(argv)
+    keep = set(filter(None, args.scenes.split(",")))
+    unknown = sorted(keep - set(TEST_SCENES) - set(CANONICAL_SCENES))
+    if unknown:
+        # A misspelt --scenes would otherwise measure nothing and pass.
+        print("peers: --scenes: unknown scene %s; known: %s" % (
+            ", ".join(unknown), ", ".join(list(TEST_SCENES) + CANONICAL_SCENES)),
+            file=sys.stderr)
+        return 2
     if args.list:
-        keep = set(filter(None, args.scenes.split(",")))
         for target in args.targets.split(","):
             for name in names_for(args.set, target, args.check):
                 if not keep or name in keep:
@@ -280,7 +287,6 @@ def main(argv=None):
         return 2
     cache = RunCache(Path(args.cache) if args.cache else ctx.build / "validation-cache")
     peers = Peers(ctx, cache, args.ref_spp, say)
-    keep = set(filter(None, args.scenes.split(",")))
     results, expected = [], 0
     for target in args.targets.split(","):
         for scene, kinds in scenes_for(args.set, cache.root):
