@@ -7,6 +7,7 @@
 #include <limits.h>
 #include <math.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -449,16 +450,111 @@ const char *sh_cli_choice_name(const sh_cli_choice *choices, int value) {
 
 /* ---- Files ---- */
 
-/* mkdir -p: makes dir and its missing parents. */
+/* The directories this run made for -p, in the order made, for
+ * sh_cli_dirs_undo: a fixed table a signal handler can read without
+ * locks. A directory that finds no free slot is made all the same and
+ * left behind on failure. */
+#define SH_CLI__DIRS 64
+static char *_Atomic made_dirs[SH_CLI__DIRS];
+static atomic_int made_count;
+static atomic_int dirs_kept;
+
+static void undo_at_exit(void) {
+  if (!atomic_load(&dirs_kept)) sh_cli_dirs_undo();
+}
+
+/* Records a directory this run made. */
+static void made_dir(const char *dir) {
+  int n = atomic_load(&made_count);
+  if (n >= SH_CLI__DIRS) return;
+  size_t len = strlen(dir) + 1;
+  char *copy = malloc(len);
+  if (!copy) return;
+  memcpy(copy, dir, len);
+  if (n == 0) atexit(undo_at_exit);
+  atomic_store(&made_dirs[n], copy);
+  atomic_store(&made_count, n + 1);
+}
+
+void sh_cli_dirs_undo(void) {
+  /* Deepest last made: removed first. rmdir removes only an empty
+   * directory, so whatever another process put there stays. */
+  for (int i = atomic_load(&made_count) - 1; i >= 0; i--) {
+    char *d = atomic_exchange(&made_dirs[i], NULL);
+    if (d) rmdir(d); /* not freed: a signal handler may run this */
+  }
+}
+
+void sh_cli_dirs_keep(void) { atomic_store(&dirs_kept, 1); }
+
+/* mkdir -p: makes dir and its missing parents, recording each one made. */
 static int make_dirs(char *dir) {
-  for (char *p = dir + 1; *p; p++) {
-    if (*p != '/') continue;
+  for (char *p = dir + 1;; p++) {
+    if (*p && *p != '/') continue;
+    char c = *p;
     *p = '\0';
     int r = mkdir(dir, 0777);
-    *p = '/';
-    if (r && errno != EEXIST) return -1;
+    if (r == 0) made_dir(dir);
+    int e = errno;
+    *p = c;
+    if (r && e != EEXIST) {
+      errno = e;
+      return -1;
+    }
+    if (!c) return 0;
   }
-  return mkdir(dir, 0777) && errno != EEXIST ? -1 : 0;
+}
+
+/* The longest name in a component and the longest path the file system
+ * under `path`'s deepest existing directory takes (pathconf; -1: no
+ * limit). */
+static void name_limits(const char *path, long *name_max, long *path_max) {
+  size_t n = strlen(path);
+  char *a = malloc(n + 2);
+  *name_max = *path_max = -1;
+  if (!a) return;
+  memcpy(a, path, n + 1);
+  struct stat sb;
+  for (;;) {
+    char *slash = strrchr(a, '/');
+    if (!slash) {
+      strcpy(a, ".");
+    } else if (slash == a) {
+      a[1] = '\0';
+    } else {
+      *slash = '\0';
+    }
+    if (stat(a, &sb) == 0 || !strcmp(a, ".") || !strcmp(a, "/")) break;
+  }
+  *name_max = pathconf(a, _PC_NAME_MAX);
+  *path_max = pathconf(a, _PC_PATH_MAX);
+  free(a);
+}
+
+int sh_cli_check_name(const char *tool, const char *option, const char *path) {
+  long name_max, path_max;
+  name_limits(path, &name_max, &path_max);
+  size_t n = strlen(path);
+  if (path_max > 0 && n >= (size_t)path_max) {
+    sh_cli_error(tool,
+                 "%s: the path of %zu bytes is longer than the file system "
+                 "takes (%ld): %s",
+                 option, n, path_max - 1, strerror(ENAMETOOLONG));
+    return 0;
+  }
+  for (const char *p = path; *p;) {
+    size_t len = strcspn(p, "/");
+    if (name_max > 0 && len > (size_t)name_max) {
+      sh_cli_error(tool,
+                   "%s: the name '%.*s...' of %zu bytes in '%.40s...' is "
+                   "longer than the file system takes (%ld): %s",
+                   option, 16, p, len, path, name_max,
+                   strerror(ENAMETOOLONG));
+      return 0;
+    }
+    p += len + (p[len] == '/');
+  }
+  return 1;
 }
 
 int sh_cli_check_output(const char *tool, const char *option,
@@ -486,6 +582,7 @@ int sh_cli_check_output(const char *tool, const char *option,
       return 0;
     }
   }
+  if (!sh_cli_check_name(tool, option, path)) return 0;
   const char *slash = strrchr(path, '/');
   /* The directory: the working one, the root, or the path's. */
   size_t len = !slash ? 1 : slash == path ? 1 : (size_t)(slash - path);
@@ -545,6 +642,12 @@ int sh_cli_render_check(const char *tool, const sh_cli_render *r) {
     fprintf(stderr, "%s: error: need -o OUTPUT (see --help)\n", tool);
     return SH_EXIT_BAD_INPUT;
   }
+  /* Every name checked before -p makes any directory. */
+  for (int k = 0; k < r->outputs.count; k++)
+    if (!sh_cli_check_name(tool, "-o", r->outputs.items[k]))
+      return SH_EXIT_BAD_INPUT;
+  if (r->stats && !sh_cli_check_name(tool, "--stats", r->stats))
+    return SH_EXIT_BAD_INPUT;
   for (int k = 0; k < r->outputs.count; k++)
     if (!sh_cli_check_output(tool, "-o", r->outputs.items[k], "exr,png",
                              r->parents))
@@ -630,6 +733,7 @@ int sh_cli_file_out(const char *tool, sh_outputs *set, const char *path,
 
 static void sh_cli__on_signal(int sig) {
   sh_outputs_on_signal();
+  sh_cli_dirs_undo();
   signal(sig, SIG_DFL);
   raise(sig);
 }
@@ -654,6 +758,7 @@ double sh_cli_render_exposure(const sh_cli_render *r, const sh_scene *scene) {
 
 void sh_cli_render_done(const char *tool, const sh_cli_render *r, int width,
                         int height, double seconds, const char *detail) {
+  sh_cli_dirs_keep();
   if (r->quiet) return;
   fprintf(stderr, "%s: wrote", tool);
   for (int k = 0; k < r->outputs.count; k++)

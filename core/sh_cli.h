@@ -183,7 +183,8 @@ typedef struct sh_cli_render {
   {"parents", 'p', SH_CLI_FLAG, NULL, 0, SH_CLI__R(parents), 0, 0,   \
    0, 1, NULL, NULL, NULL, NULL,                                              \
    "make the outputs' directories (and their parents) if missing; without "  \
-   "it a missing directory is an error before rendering"},                    \
+   "it a missing directory is an error before rendering; a run that fails "  \
+   "or is interrupted removes the directories it made"},                      \
   {"width", 0, SH_CLI_INT, "W", 1, SH_CLI__R(width), 1, 65536, 0, 0, \
    NULL, NULL, NULL, NULL,                                                    \
    "image width in pixels instead of the scene's (the height follows the "   \
@@ -259,6 +260,24 @@ void sh_cli_render_done(const char *tool, const sh_cli_render *r, int width,
  * returns 0, else 1. */
 int sh_cli_check_output(const char *tool, const char *option,
                         const char *path, const char *exts, int create);
+
+/* Checks that the file system takes an output path before any directory
+ * is made for it: no component longer than the longest name
+ * (pathconf _PC_NAME_MAX) and the whole shorter than the longest path
+ * (_PC_PATH_MAX), both asked of the path's deepest existing directory.
+ * Prints the problem and returns 0, else 1. sh_cli_check_output calls it;
+ * a tool with several outputs calls it on all of them first. */
+int sh_cli_check_name(const char *tool, const char *option, const char *path);
+
+/* The directories -p made (sh_cli_check_output with `create`) belong to
+ * the run: unless sh_cli_dirs_keep was called, they are removed at exit
+ * (and on SIGINT, SIGTERM or SIGHUP, with the outputs' temporaries),
+ * deepest first and only when empty; a directory that existed before the
+ * run is never removed. A tool calls sh_cli_dirs_keep once its outputs
+ * are published (sh_cli_render_done does); sh_cli_dirs_undo removes them
+ * at once. */
+void sh_cli_dirs_keep(void);
+void sh_cli_dirs_undo(void);
 
 /* Loads a scene for a tool: prints the located error and returns its exit
  * status (a missing or unreadable scene or mesh file is bad input, 2), or

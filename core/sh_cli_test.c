@@ -3,6 +3,7 @@
  * options and missing values), the --help text drawn from the table, and
  * output checks. Their messages go to stderr, which the test leaves
  * visible. */
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -124,10 +125,25 @@ int main(void) {
   SH_CHECK(!sh_cli_check_output("t", "-o", path, "exr", 0));
   SH_CHECK(sh_cli_check_output("t", "-o", path, "exr", 1));
   SH_CHECK(sh_cli_check_output("t", "-o", path, "exr", 0));
-  snprintf(path, sizeof path, "%s/x/y", dir);
-  rmdir(path);
+  /* A failed run undoes what -p made, deepest first, never the directory
+   * that was there before (issue 11). */
+  sh_cli_dirs_undo();
+  struct stat sb;
   snprintf(path, sizeof path, "%s/x", dir);
-  rmdir(path);
+  SH_CHECK(stat(path, &sb) != 0 && errno == ENOENT);
+  SH_CHECK(stat(dir, &sb) == 0);
+  /* A name longer than the file system takes is refused before any
+   * directory is made. */
+  char name[300];
+  memset(name, 'z', sizeof name - 1);
+  name[sizeof name - 1] = '\0';
+  char longpath[400];
+  snprintf(longpath, sizeof longpath, "%s/x/%s.png", dir, name);
+  SH_CHECK(!sh_cli_check_name("t", "-o", longpath));
+  SH_CHECK(!sh_cli_check_output("t", "-o", longpath, "png", 1));
+  SH_CHECK(stat(path, &sb) != 0);
+  snprintf(path, sizeof path, "%s/x/a.png", dir);
+  SH_CHECK(sh_cli_check_name("t", "-o", path));
   rmdir(dir);
 
   /* A directory where no file can be made is refused before the work, even

@@ -32,7 +32,8 @@ static sh_cli_option options[] = {
     {"output", 'o', SH_CLI_TEXT, "OUT", 0, FIELD(output), 0, 0, 0, 0, NULL,
      NULL, NULL, NULL, "the output file, named as its target says below"},
     {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
-     NULL, NULL, NULL, "make the output's directory (and its parents) if missing"},
+     NULL, NULL, NULL, "make the output's directory (and its parents) if missing; a run that "
+     "fails or is interrupted removes the directories it made"},
     {"quality", 0, SH_CLI_CHOICE, NULL, 0, FIELD(quality), 0, 0, 0, 0,
      qualities, NULL, NULL, "draft",
      "draft: quick settings for previews and tests; final: medium intervals "
@@ -130,6 +131,7 @@ int main(int argc, char **argv) {
     free(text);
   }
   if (st == SH_OK) {
+    sh_cli_dirs_keep();
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);
   } else if (a.strict && notes.count > 0 && st == SH_ERR_SCENE) {

@@ -87,6 +87,32 @@ render_cli_common() { # tool, good scene (4:3), extra arguments...
   message_has "--crop 3 values" "$dir/err" "--crop needs 4 values"
   [ -e "$dir/x.exr" ] && { echo "FAIL: a refused crop wrote its output"; fail=1; }
   rm -rf "$dir/made" "$dir/w.exr" "$dir/x.exr" "$dir/c.exr"
+  parents_undone "$tool" "$scene" -o "$@"
+}
+# A run with -p that is refused or fails leaves no directory it made, and
+# every directory that was there before (issue 11): names too long are
+# refused before any is made; a failure after (a scene that does not load,
+# a second output refused) removes those made, deepest first.
+parents_undone() { # tool, good scene, output option, extra arguments...
+  local tool=$1 scene=$2 o=$3 long z
+  shift 3
+  mkdir -p "$dir/pp/keep"
+  z=$(printf 'z%.0s' $(seq 300))
+  "$tool" "$scene" $o "$dir/pp/g1/g2/x.exr" $o "$dir/pp/g1/h/$z.png" -p -q "$@" 2>"$dir/err"
+  check "-p, a name too long" 2 $?
+  message_has "-p, a name too long" "$dir/err" "File name too long"
+  long=$dir/pp/g1
+  for _ in $(seq 20); do long=$long/$(printf 'd%.0s' $(seq 250)); done
+  "$tool" "$scene" $o "$long/x.exr" -p -q "$@" 2>"$dir/err"
+  check "-p, a path too long" 2 $?
+  message_has "-p, a path too long" "$dir/err" "File name too long"
+  "$tool" "$dir/missing.json" $o "$dir/pp/keep/n1/n2/x.exr" -p -q "$@" 2>/dev/null
+  check "-p, a scene that does not load" 2 $?
+  "$tool" "$scene" $o "$dir/pp/keep/n1/x.exr" $o /proc/x.png -p -q "$@" 2>/dev/null
+  check "-p, a second output refused" 2 $?
+  [ "$(cd "$dir/pp" && find . | sort | tr '\n' ' ')" = ". ./keep " ] \
+    || { echo "FAIL: -p runs refused left: $(cd "$dir/pp" && find .)"; fail=1; }
+  rm -rf "$dir/pp"
 }
 # No output may be an input or another output of the run, whatever the
 # spelling; a refused run exits 2 and changes nothing; a run killed by
@@ -126,15 +152,17 @@ render_files_distinct() { # tool, good scene, extra arguments...
 # Interrupts a run with each signal once its output is open: the run ends
 # by the signal and its directory is as before (no output, no temporary).
 render_signals() { # tool, slow scene, extra arguments...
-  local tool=$1 scene=$2 sig pid status
+  local tool=$1 scene=$2 sig pid status sub
   shift 2
   mkdir -p "$dir/sig"
   for sig in INT TERM KILL; do
     # A shell starts background jobs with SIGINT ignored: undone first.
+    # With -p, the directories made go too (SIGKILL cannot be caught).
+    [ $sig = KILL ] && sub= || sub=made/by/p/
     python3 -c 'import os, signal, sys
 signal.signal(signal.SIGINT, signal.SIG_DFL)
-os.execvp(sys.argv[1], sys.argv[1:])' "$tool" "$scene" -o "$dir/sig/s.exr" \
-      -o "$dir/sig/s.png" --stats "$dir/sig/s.json" -q "$@" 2>/dev/null &
+os.execvp(sys.argv[1], sys.argv[1:])' "$tool" "$scene" -o "$dir/sig/${sub}s.exr" \
+      -o "$dir/sig/${sub}s.png" --stats "$dir/sig/${sub}s.json" -p -q "$@" 2>/dev/null &
     pid=$!
     # Once the tool runs (not python), well into the render.
     while [ "$(readlink /proc/$pid/exe)" != "$(readlink -f "$tool")" ] && kill -0 $pid 2>/dev/null; do

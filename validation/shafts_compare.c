@@ -50,7 +50,8 @@ static const sh_cli_option options[] = {
      0, 0, NULL, NULL, NULL, NULL,
      "exit with status 3 if rel_rms exceeds X or IMG holds a bad value"},
     {"parents", 'p', SH_CLI_FLAG, NULL, 0, FIELD(parents), 0, 0, 0, 1, NULL,
-     NULL, NULL, NULL, "make the directories of --diff and --preview if missing"},
+     NULL, NULL, NULL, "make the directories of --diff and --preview if missing; a run that "
+     "fails or is interrupted removes the directories it made"},
 };
 
 /* The figures, defined for --help (sh_image_compare in core/sh_compare.h
@@ -138,6 +139,10 @@ static int parse_args(int argc, char **argv, args *a) {
   }
   a->ref = parsed.operands[0];
   a->img = parsed.operands[1];
+  /* Both names checked before -p makes any directory. */
+  if ((a->diff && !sh_cli_check_name(TOOL, "--diff", a->diff)) ||
+      (a->preview && !sh_cli_check_name(TOOL, "--preview", a->preview)))
+    return SH_EXIT_BAD_INPUT;
   if ((a->diff &&
        !sh_cli_check_output(TOOL, "--diff", a->diff, "exr,png", a->parents)) ||
       (a->preview &&
@@ -221,6 +226,7 @@ int main(int argc, char **argv) {
   if (st == SH_OK && a.preview)
     st = sh_outputs_write_image(set, a.preview, &img, a.exposure, NULL, &err);
   if (st == SH_OK) st = sh_outputs_publish(set, &err);
+  if (st == SH_OK) sh_cli_dirs_keep();
   sh_outputs_free(set);
   if (st != SH_OK) {
     rc = sh_cli_report(TOOL, &err);
