@@ -99,6 +99,17 @@ done
 "$tool" "$data/point_medium.json" --to json -o "$dir/made/by/p.json" -p; check "-p" 0 $?
 [ -s "$dir/made/by/p.json" ] || { echo "FAIL: -p did not write"; fail=1; }
 rm -rf "$dir/made"
+# A refused or failed run with -p leaves no directory it made and keeps
+# those that were there (issue 11).
+mkdir -p "$dir/pp/keep"
+"$tool" "$data/point_medium.json" --to json -o "$dir/pp/keep/g/$(printf 'z%.0s' $(seq 300)).json" -p 2>"$dir/err"
+check "-p, a name too long" 2 $?
+message_has "-p, a name too long" "$dir/err" "File name too long"
+"$tool" "$dir/missing.json" --to json -o "$dir/pp/keep/g/h/p.json" -p 2>/dev/null
+check "-p, a scene that does not load" 2 $?
+[ "$(cd "$dir/pp" && find . | sort | tr '\n' ' ')" = ". ./keep " ] \
+  || { echo "FAIL: -p runs refused left: $(cd "$dir/pp" && find .)"; fail=1; }
+rm -rf "$dir/pp"
 empty "failed exports" "$out"
 # No file of an export may be the scene, whatever its spelling: the JSON
 # export over its own scene, the Blender export whose data file
