@@ -36,6 +36,20 @@ message_has "--diff is the image" "$dir/err" "must not overwrite an input"
 cmp -s "$dir/bright.exr" "$dir/keep.exr" || { echo "FAIL: --diff overwrote the image"; fail=1; }
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/q.png" --preview "$dir/q.png" >/dev/null 2>&1
 check "--diff is --preview" 2 $?
+# A refused or failed run with -p leaves no directory it made and keeps
+# those that were there (issue 11): a --preview name too long is refused
+# before --diff's directory is made; an image that does not load removes
+# the directories made.
+mkdir -p "$dir/pp/keep"
+"$tool" "$dir/ref.exr" "$dir/bright.exr" --diff "$dir/pp/keep/a/d.png" \
+  --preview "$dir/pp/keep/b/$(printf 'z%.0s' $(seq 300)).png" -p >/dev/null 2>"$dir/err"
+check "-p, a name too long" 2 $?
+message_has "-p, a name too long" "$dir/err" "File name too long"
+"$tool" "$dir/ref.exr" "$dir/missing.exr" --diff "$dir/pp/keep/a/b/d.png" -p >/dev/null 2>&1
+check "-p, an image that does not load" 2 $?
+[ "$(cd "$dir/pp" && find . | sort | tr '\n' ' ')" = ". ./keep " ] \
+  || { echo "FAIL: -p runs refused left: $(cd "$dir/pp" && find .)"; fail=1; }
+rm -rf "$dir/pp"
 [ -e "$dir/q.png" ] && { echo "FAIL: a refused compare wrote q.png"; fail=1; }
 [ -s "$dir/d.exr" ] || { echo "FAIL: d.exr not written"; fail=1; }
 "$tool" "$dir/ref.exr" "$dir/bright.exr" --max-rel-rms 0.2 >/dev/null; check "within bound" 0 $?
