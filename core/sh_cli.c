@@ -450,41 +450,40 @@ const char *sh_cli_choice_name(const sh_cli_choice *choices, int value) {
 
 /* ---- Files ---- */
 
-/* The directories this run made for -p, in the order made, for
- * sh_cli_dirs_undo: a fixed table a signal handler can read without
- * locks. A directory that finds no free slot is made all the same and
- * left behind on failure. */
-#define SH_CLI__DIRS 64
-static char *_Atomic made_dirs[SH_CLI__DIRS];
-static atomic_int made_count;
+/* The directories this run made for -p, newest (deepest) first, for
+ * sh_cli_dirs_undo: a list whose nodes are complete before an atomic store
+ * publishes them, so that a signal handler can walk it without locks, and
+ * with no limit on how many. */
+typedef struct made_node {
+  struct made_node *next;
+  char dir[]; /* the directory's path as given to mkdir */
+} made_node;
+static made_node *_Atomic made_head;
+static atomic_int undo_registered;
 static atomic_int dirs_kept;
 
 static void undo_at_exit(void) {
   if (!atomic_load(&dirs_kept)) sh_cli_dirs_undo();
 }
 
-/* Records a directory this run made. */
+/* Records a directory this run made (out of memory: it is left behind on
+ * failure). */
 static void made_dir(const char *dir) {
-  int n = atomic_load(&made_count);
-  if (n >= SH_CLI__DIRS) return;
   size_t len = strlen(dir) + 1;
-  char *copy = malloc(len);
-  if (!copy) return;
-  memcpy(copy, dir, len);
-  if (n == 0) atexit(undo_at_exit);
-  atomic_store(&made_dirs[n], copy);
-  atomic_store(&made_count, n + 1);
+  made_node *node = malloc(sizeof *node + len);
+  if (!node) return;
+  memcpy(node->dir, dir, len);
+  if (!atomic_exchange(&undo_registered, 1)) atexit(undo_at_exit);
+  node->next = atomic_load(&made_head);
+  atomic_store(&made_head, node);
 }
 
 void sh_cli_dirs_undo(void) {
-  /* Deepest last made: removed first. rmdir removes only an empty
-   * directory, so whatever another process put there stays. */
-  for (int i = atomic_load(&made_count) - 1; i >= 0; i--) {
-    /* Kept in the table, never freed: a signal handler may run this, and
-     * reachable names are no leak to LeakSanitizer. */
-    char *d = atomic_load(&made_dirs[i]);
-    if (d) rmdir(d);
-  }
+  /* Newest first: the deepest is removed before its parent. rmdir removes
+   * only an empty directory, so whatever another process put there stays.
+   * The nodes are never freed: a signal handler may run this, and
+   * reachable names are no leak to LeakSanitizer. */
+  for (made_node *n = atomic_load(&made_head); n; n = n->next) rmdir(n->dir);
 }
 
 void sh_cli_dirs_keep(void) { atomic_store(&dirs_kept, 1); }

@@ -144,6 +144,22 @@ int main(void) {
   SH_CHECK(stat(path, &sb) != 0);
   snprintf(path, sizeof path, "%s/x/a.png", dir);
   SH_CHECK(sh_cli_check_name("t", "-o", path));
+  /* However many directories -p made (the record once held 64), all are
+   * undone. */
+  size_t deep_len = strlen(dir) + 200 * 2 + 8;
+  char *deep = malloc(deep_len);
+  SH_CHECK(deep != NULL);
+  if (deep) {
+    size_t at = (size_t)snprintf(deep, deep_len, "%s", dir);
+    for (int i = 0; i < 200; i++) at += (size_t)snprintf(deep + at, deep_len - at, "/d");
+    snprintf(deep + at, deep_len - at, "/a.exr");
+    SH_CHECK(sh_cli_check_output("t", "-o", deep, "exr", 1));
+    snprintf(path, sizeof path, "%s/d", dir);
+    SH_CHECK(stat(path, &sb) == 0);
+    sh_cli_dirs_undo();
+    SH_CHECK(stat(path, &sb) != 0 && errno == ENOENT);
+    free(deep);
+  }
   rmdir(dir);
 
   /* A directory where no file can be made is refused before the work, even
