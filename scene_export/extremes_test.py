@@ -16,7 +16,12 @@ shaft, the camera 5000 units away at 0.055 degrees) and its variants, at
   within 1e6 units, leaving the scene 0.7 units across);
 - the camera 5 units away (fov 51 degrees) scaled by 1e-9 (was 14% when
   object spaces were written unscaled) and moved by (1e6, 0, -1e6): the
-  image of the plain scene within 0.1%.
+  image of the plain scene within 0.1%;
+- with a teapot mesh placed by a transform (scale 0.5, rotated, moved),
+  scaled by 1e-9, 1e6 and 1e12 (the mesh's transform scale too): the image
+  of the plain scene with the teapot within 0.1% (measured 0; was 4.2% at
+  1e-9 and 1e12 while the object space carried the frame's scale and the
+  matrix the transform's, se_pov.c shape()).
 
 `cycles`: the Blender export rendered by Cycles: the camera 5000 units
 away within 3% of the reference (256 samples; was 6.4%, 7% dark: the
@@ -52,6 +57,12 @@ import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASE = os.path.join(HERE, "testdata", "far_camera.json")
+MESH = os.path.join(HERE, "testdata", "assets", "teapot.obj")
+# A mesh placed by a transform of every kind (scale, rotation, translation),
+# 1.5 units across, in the spot's light and partly in the ball's shadow.
+TEAPOT = {"type": "mesh", "file": "teapot.obj", "material": "floor",
+          "transform": {"scale": [0.5, 0.5, 0.5], "rotate_deg": [0, 40, 0],
+                        "translate": [-0.5, 0, 0.4]}}
 
 
 class Failed(Exception):
@@ -67,11 +78,15 @@ def run(cmd, cwd=None):
     return p.stdout.decode(errors="replace")
 
 
-def variant(distance, scale=1.0, offset=(0.0, 0.0, 0.0)):
+def variant(distance, scale=1.0, offset=(0.0, 0.0, 0.0), teapot=False):
     """The case seen from `distance` units with the framing kept, every
     length times `scale` (coefficients over it, intensity times its
-    square: the same image), moved by `offset`."""
+    square: the same image), moved by `offset`; with `teapot`, a teapot
+    mesh (TEAPOT) on the floor, placed by its transform, which the scale
+    and offset then change (its scale times `scale`)."""
     s = json.load(open(CASE, encoding="utf-8"))
+    if teapot:
+        s["shapes"].append(copy.deepcopy(TEAPOT))
     cam = s["camera"]
     half = 5000.0 * math.tan(math.radians(0.055 / 2))
     cam["position"][2] = distance
@@ -97,6 +112,10 @@ def variant(distance, scale=1.0, offset=(0.0, 0.0, 0.0)):
                 shape[k] = [c * scale for c in shape[k]]
         if "radius" in shape:
             shape["radius"] *= scale
+        if "transform" in shape:
+            t = shape["transform"]
+            t["scale"] = [c * scale for c in t["scale"]]
+            t["translate"] = p(t["translate"])
     return s
 
 
@@ -174,14 +193,14 @@ def stem(name):
     return re.sub(r"\W+", "_", name)
 
 
-def same_as_plain(build, render, cases, label=""):
+def same_as_plain(build, render, cases, label="", teapot=False):
     """Whether each case (name, scale, offset) of the scene seen from 5
-    units, drawn by render(file stem, scene), is within 0.1% of the plain
-    scene's image."""
-    plain = render("plain", variant(5.0))
+    units (with the teapot, if `teapot`), drawn by render(file stem,
+    scene), is within 0.1% of the plain scene's image."""
+    plain = render("plain_teapot" if teapot else "plain", variant(5.0, teapot=teapot))
     ok = True
     for name, scale, offset in cases:
-        img = render(stem(name), variant(5.0, scale, offset))
+        img = render(stem(name), variant(5.0, scale, offset, teapot))
         ok &= compare(build, plain, img, 1e-3, label + name + " against the plain scene")
     return ok
 
@@ -246,6 +265,11 @@ def check_pov(build, work):
     ok &= far_against_reference(build, work, render, 5e7, 0.02, "POV-Ray")
     ok &= same_as_plain(build, render, (("scale 1e-9", 1e-9, (0, 0, 0)),
                                         ("moved by (1e6, 0, -1e6)", 1.0, (1e6, 0, -1e6))))
+    shutil.copyfile(MESH, os.path.join(work, "teapot.obj"))
+    ok &= same_as_plain(build, render, (("teapot scaled by 1e-9", 1e-9, (0, 0, 0)),
+                                        ("teapot scaled by 1e6", 1e6, (0, 0, 0)),
+                                        ("teapot scaled by 1e12", 1e12, (0, 0, 0))),
+                        teapot=True)
     return ok
 
 

@@ -440,6 +440,19 @@ static void mesh2(pov *p, const sh_mesh *m, double k) {
   se_buf_puts(b, "\n  }\n");
 }
 
+/* The size of m's linear part: the geometric mean of its columns' lengths
+ * (its scale factor for a uniform scale with any rotation), 1 if a column
+ * has no length (the format refuses singular transforms). */
+static double linear_size(const sh_mat4 *m) {
+  double product = 1.0;
+  for (int col = 0; col < 3; col++) {
+    double len = sh_length(sh_v3(m->m[0][col], m->m[1][col], m->m[2][col]));
+    if (!(len > 0) || !isfinite(len)) return 1.0;
+    product *= cbrt(len);
+  }
+  return product;
+}
+
 static sh_status shape(pov *p, int i, sh_error *err) {
   const sh_shape *s = &p->scene->shapes[i];
   se_buf *b = p->b;
@@ -449,8 +462,13 @@ static sh_status shape(pov *p, int i, sh_error *err) {
   /* The object space too is written moved and scaled, (q - oo) k with oo
    * the frame's origin in object space, and the matrix undoes it: POV-Ray's
    * tolerances apply in object space as well (a quad 4e-9 across written
-   * as is and scaled by its matrix came out 14% off). */
-  double k = p->scale;
+   * as is and scaled by its matrix came out 14% off). k is the frame's
+   * scale times the transform's own (linear_size), so that object space
+   * has POV-Ray's units and the matrix's linear part, the transform's over
+   * its size, is about 1 whatever the scale of the shape's transform (a
+   * teapot given at scale 1e-12 was written 1e14 units large under a
+   * matrix of 1e-12 and mostly vanished). */
+  double k = p->scale * linear_size(&s->xform);
   sh_vec3 oo = sh_xform_point(&s->inv, p->center);
 #define SE__Q(v) ((v).x - oo.x) * k, ((v).y - oo.y) * k, ((v).z - oo.z) * k
   switch (s->type) {
