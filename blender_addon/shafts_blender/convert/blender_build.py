@@ -38,6 +38,16 @@ class DataError(Exception):
     """The arguments or the JSON data are not what the exporter writes."""
 
 
+def json_object(value, what, optional=False):
+    """value checked to be a JSON object (None as well if optional), else
+    DataError naming what."""
+    if value is None and optional:
+        return None
+    if not isinstance(value, dict):
+        raise DataError(what + ": expected an object")
+    return value
+
+
 def parse_args(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
     opts = {"engine": "cycles", "out": None, "samples": None, "seed": None}
@@ -278,8 +288,7 @@ def sun_disks(tree, world):
     total = total.outputs[0]
     for i, d in enumerate(disks):
         what = "world.sun_disks[%d]" % i
-        if not isinstance(d, dict):
-            raise DataError("%s: expected an object" % what)
+        json_object(d, what)
         dist = tree.nodes.new("ShaderNodeVectorMath")
         dist.operation = "DISTANCE"
         tree.links.new(direction, dist.inputs[0])
@@ -429,11 +438,9 @@ def fog_setup(item):
     medium: the coefficients written are those at the box's bottom z_lo,
     and the density factor at a point of Blender height z is
     exp((z_lo - z) / H)."""
-    f = item.get("height_fog")
+    f = json_object(item.get("height_fog"), "medium.height_fog", optional=True)
     if f is None:
         return None
-    if not isinstance(f, dict):
-        raise DataError("medium.height_fog: expected an object")
     what = "medium.height_fog."
     fog = {k: numbers([f.get(k)], 1, what + k)[0]
            for k in ("bottom", "scale_height", "step_rate", "max_steps")}
@@ -503,9 +510,7 @@ def volume_material(item, engine):
         if total is not None:
             tree.links.new(total, out.inputs["Volume"])
         return mat
-    v = item.get("volume")
-    if not isinstance(v, dict):
-        raise DataError("medium.volume: expected an object")
+    v = json_object(item.get("volume"), "medium.volume")
     what = "medium.volume"
     p = volume("ShaderNodeVolumePrincipled",
                numbers([v.get("density")], 1, what + ".density")[0],
@@ -520,12 +525,10 @@ def volume_material(item, engine):
 def atmosphere_setup(item):
     """The medium's "atmosphere" data (scene_export/se_blender_atmo.h)
     checked, or None for a medium in a box."""
-    a = item.get("atmosphere")
+    what = "medium.atmosphere"
+    a = json_object(item.get("atmosphere"), what, optional=True)
     if a is None:
         return None
-    what = "medium.atmosphere"
-    if not isinstance(a, dict):
-        raise DataError(what + ": expected an object")
     out = {"center": tuple(numbers(a.get("center"), 3, what + ".center"))}
     for k in ("ground_radius", "top_radius", "step_rate", "max_steps"):
         out[k] = numbers([a.get(k)], 1, what + "." + k)[0]
@@ -691,12 +694,10 @@ def medium_properties(item):
     """The raw properties for the scene's medium (data medium.scene, the
     scene format's medium object), or None for a homogeneous one (the node
     graph is exact for it)."""
-    m = item.get("scene")
+    what = "medium.scene"
+    m = json_object(item.get("scene"), what, optional=True)
     if m is None:
         return None
-    what = "medium.scene"
-    if not isinstance(m, dict):
-        raise DataError(what + ": expected an object")
     kind = MEDIUM_KINDS.get(m.get("type"))
     if kind is None:
         return None
@@ -707,9 +708,7 @@ def medium_properties(item):
                 "base_height": numbers([m.get("base_height")], 1, what + ".base_height")[0],
                 "scale_height": numbers([m.get("scale_height")], 1, what + ".scale_height")[0],
                 "phase": phase, "phase_g": g}
-    r = m.get("rayleigh")
-    if not isinstance(r, dict):
-        raise DataError(what + ".rayleigh: expected an object")
+    r = json_object(m.get("rayleigh"), what + ".rayleigh")
     p = {"kind": 2, "center": numbers(m.get("center"), 3, what + ".center"),
          "ground_radius": numbers([m.get("ground_radius")], 1, what + ".ground_radius")[0],
          "top_radius": numbers([m.get("top_radius")], 1, what + ".top_radius")[0],
@@ -719,18 +718,14 @@ def medium_properties(item):
                                           what + ".rayleigh.scale_height")[0],
          "use_mie": "mie" in m, "use_ozone": "ozone" in m}
     if "mie" in m:
-        mie = m["mie"]
-        if not isinstance(mie, dict):
-            raise DataError(what + ".mie: expected an object")
+        mie = json_object(m["mie"], what + ".mie")
         p["mie_phase"], p["mie_g"] = _phase_number(mie.get("phase"), what + ".mie.phase")
         p["mie_sigma_s"] = numbers(mie.get("sigma_s"), 3, what + ".mie.sigma_s")
         p["mie_sigma_a"] = numbers(mie.get("sigma_a", [0.0] * 3), 3, what + ".mie.sigma_a")
         p["mie_scale_height"] = numbers([mie.get("scale_height")], 1,
                                         what + ".mie.scale_height")[0]
     if "ozone" in m:
-        o = m["ozone"]
-        if not isinstance(o, dict):
-            raise DataError(what + ".ozone: expected an object")
+        o = json_object(m["ozone"], what + ".ozone")
         p["ozone_sigma_a"] = numbers(o.get("sigma_a"), 3, what + ".ozone.sigma_a")
         p["ozone_center_height"] = numbers([o.get("center_height")], 1,
                                            what + ".ozone.center_height")[0]
@@ -742,9 +737,7 @@ def set_frame_properties(collection, data):
     """The writer's frame on the collection (shafts_scale, shafts_origin,
     shafts_axes: a scene point p is at (p - origin) scale along the named
     axes), which the add-on maps the medium's properties through."""
-    frame = data.get("frame", {})
-    if not isinstance(frame, dict):
-        raise DataError("frame: expected an object")
+    frame = json_object(data.get("frame", {}), "frame")
     axes = frame.get("axes", ["+x", "-z", "+y"])
     if (not isinstance(axes, list) or len(axes) != 3
             or not all(a in ("+x", "-x", "+y", "-y", "+z", "-z") for a in axes)):
