@@ -376,19 +376,34 @@ def table(ctx, name, scene, rows):
     return "\n".join(out) + "\n"
 
 
-# Published costs, as docs/sky.md quotes them with their sources (the
-# search tool's findings; nothing here is measured on this machine).
-PUBLISHED = """Published costs (not measured here; docs/sky.md, "Published costs", gives the sources)
+# Published costs, as docs/sky.md ("Published costs of Bruneton 2017 and
+# Hillaire 2020") quotes them with their sources; keep the two consistent.
+# Nothing here is measured on this machine.
+PUBLISHED = """Published costs (not measured here; docs/sky.md, "Published costs", gives the sources and where we looked)
 
-| method | what | hardware | cost | source |
+Not found: Hillaire 2020's own timing table (PS4 / PC GPU / iPhone), any frame rate or
+hardware of Bruneton and Neyret 2008, any timing of Bruneton 2017's code or of Bruneton
+2016's evaluation of 8 sky models (the stored papers answer with their first page only;
+the authors' code records no timing).
+
+| method | what | hardware | cost | whose figure (source) |
 |---|---|---|---|---|
-| Bruneton and Neyret 2008 | precomputation | GPU (not named) | "a few seconds" | the paper's abstract (CGF 27(4)) |
-| Bruneton 2017 (its code) | precomputation at a 128 MiB scattering table | GeForce GTX 750 Ti | "several tens of seconds" | Stellarium issue 624 (a user of the code) |
-| Bruneton 2017 | per frame | - | no figure found | - |
-| Hillaire 2020 | paper's own table (PS4, GTX 1080, iPhone) | - | not readable through the search tool | - |
-| Hillaire 2020 (voithos/godot-precomputed-atmosphere) | transmittance / multiple-scattering / sky-view LUT | RTX 4090 | 0.0074 / 0.174 / 0.0083 ms | its README |
-| Hillaire 2020 (AirGuanZ/AtmosphereRenderer) | sky-view LUT 64x64; aerial perspective without / with shadows | GTX 1060 | 0.036; 0.03 / 0.2 ms | its README |
-| Hillaire 2020 (matejelias.cz) | transmittance / multiple-scattering / sky-view LUT | RTX 2060, 3060, 4080 | 0.141/0.127/0.034; 0.414/0.371/0.259; 0.026/0.024/0.010 ms | matejelias.cz/projects/atmosphere |
+| Bruneton and Neyret 2008 | precomputation | GPU (not named) | "a few seconds" | the authors' (abstract, CGF 27(4)) |
+| Bruneton 2017's code | precomputation, 128 MiB scattering table | GeForce GTX 750 Ti | "several tens of seconds" | a user's (Stellarium issue 624) |
+| Bruneton 2017 | per frame | - | not found | - |
+| Hillaire 2020 | the paper's own table (LUT passes) | - | not found | - |
+| Hillaire 2020 (voithos) | transmittance / multiple-scattering / sky-view LUT | RTX 4090 | 0.0074 / 0.174 / 0.0083 ms | third party's (its README) |
+| Hillaire 2020 (AirGuanZ) | sky-view LUT 64x64; aerial perspective 64x64x32 / 200x150x32 with shadows | GTX 1060 | 0.036; 0.03 / 0.2 ms | third party's (its GitHub page) |
+| Hillaire 2020 (matejelias.cz) | transmittance; multiple scattering; sky-view; aerial perspective; up-sample; composition | RTX 2060 / 3060 / 4080 | 0.141/0.127/0.034; 0.414/0.371/0.259; 0.026/0.024/0.010; 0.095/0.097/0.080; 0.081/0.076/0.020; 0.174/0.128/0.032 ms | third party's (matejelias.cz/projects/atmosphere) |
+
+Beside ours: these are desktop GPUs; gl_shafts above runs on llvmpipe on 2 CPU cores
+(33-41 ms a frame at 640x480 on a quiet machine, docs/sky.md), so absolute and per-pixel
+times do not compare (the GPU sky passes sum to 0.14-0.38 ms a frame: a ratio of about
+90-290 that is mostly hardware), nor do the methods (theirs add multiple scattering from
+low-resolution tables; ours is single scattering on a lattice of the screen). What compares is where the
+work goes: Bruneton precomputes a 4D table once (32x128x32x8 texels), Hillaire small 2D
+tables plus 192x108 and 32x32x32 per-view tables a frame, gl_shafts one 64x256
+optical-depth table once. Like with like: only the ratios in the tables above.
 """
 
 
