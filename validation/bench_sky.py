@@ -381,7 +381,7 @@ def table(ctx, name, scene, rows):
 # Nothing here is measured on this machine.
 PUBLISHED = """Published costs (not measured here; docs/sky.md, "Published costs", gives the sources and where we looked)
 
-Not found: Hillaire 2020's own timing table (PS4 / PC GPU / iPhone), any frame rate or
+Not found: Hillaire 2020's own timing table (neither figures nor hardware), any frame rate or
 hardware of Bruneton and Neyret 2008, any timing of Bruneton 2017's code or of Bruneton
 2016's evaluation of 8 sky models (the stored papers answer with their first page only;
 the authors' code records no timing).
