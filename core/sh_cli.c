@@ -794,12 +794,14 @@ int sh_cli_load_scene(const char *tool, const char *path, int quiet,
 
 void sh_cli_resize(sh_scene *scene, long width, long height) {
   sh_camera *cam = &scene->camera;
+  /* The side not given follows the aspect, at least one pixel (a side
+   * rounded to 0 would have left the scene's). */
   if (width > 0 && height <= 0)
-    height = lround((double)width * cam->height / cam->width);
+    height = lround(fmax(1.0, (double)width * cam->height / cam->width));
   else if (height > 0 && width <= 0)
-    width = lround((double)height * cam->width / cam->height);
-  if (width > 0) cam->width = (int)(width < 1 ? 1 : width);
-  if (height > 0) cam->height = (int)(height < 1 ? 1 : height);
+    width = lround(fmax(1.0, (double)height * cam->width / cam->height));
+  if (width > 0) cam->width = (int)width;
+  if (height > 0) cam->height = (int)height;
 }
 
 int sh_cli_report(const char *tool, sh_error *err) {

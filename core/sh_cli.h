@@ -172,6 +172,17 @@ typedef struct sh_cli_render {
                         sh_cli_render_free */
 } sh_cli_render;
 
+/* The --width W and --height H options of every tool that makes an image
+ * (the renderers, scene_export): two `long` fields at these offsets, 0
+ * when not given, each from 1 to 65536; sh_cli_resize applies them. */
+#define SH_CLI_SIZE_OPTIONS(width_offset, height_offset)                      \
+  {"width", 0, SH_CLI_INT, "W", 1, (width_offset), 1, 65536, 0, 0, NULL,     \
+   NULL, NULL, NULL,                                                          \
+   "image width in pixels instead of the scene's (the height follows the "   \
+   "scene's aspect unless given)"},                                           \
+  {"height", 0, SH_CLI_INT, "H", 1, (height_offset), 1, 65536, 0, 0, NULL,   \
+   NULL, NULL, NULL, "image height in pixels instead of the scene's"}
+
 #define SH_CLI__R(f) offsetof(sh_cli_render, f)
 #define SH_CLI_RENDER_OPTIONS                                        \
   {"output", 'o', SH_CLI_LIST, "FILE", 0, SH_CLI__R(outputs), 0, 0,  \
@@ -185,12 +196,7 @@ typedef struct sh_cli_render {
    "make the outputs' directories (and their parents) if missing; without "  \
    "it a missing directory is an error before rendering; a run that fails "  \
    "or is interrupted removes the directories it made"},                      \
-  {"width", 0, SH_CLI_INT, "W", 1, SH_CLI__R(width), 1, 65536, 0, 0, \
-   NULL, NULL, NULL, NULL,                                                    \
-   "image width in pixels instead of the scene's (the height follows the "   \
-   "scene's aspect unless given)"},                                           \
-  {"height", 0, SH_CLI_INT, "H", 1, SH_CLI__R(height), 1, 65536, 0,  \
-   0, NULL, NULL, NULL, NULL, "image height in pixels instead of the scene's"}, \
+  SH_CLI_SIZE_OPTIONS(SH_CLI__R(width), SH_CLI__R(height)),                   \
   {"crop", 0, SH_CLI_INT, "X0 Y0 X1 Y1", 4, SH_CLI__R(crop_args), 0, 65536,  \
    0, 0, NULL, NULL, NULL, NULL,                                              \
    "render only the pixels [X0, X1) x [Y0, Y1) of the image (after --width " \

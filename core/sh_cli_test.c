@@ -115,6 +115,21 @@ int main(void) {
   SH_CHECK(parse(&v, &a, "--version", NULL) == 0);
   SH_CHECK(parse(&v, &a, "--help", NULL) == 0);
 
+  /* --width/--height: the side not given follows the aspect, and is at
+   * least one pixel (a wide image narrowed to 40 columns was left at its
+   * own height when the other side rounded to 0). */
+  sh_scene sc = {0};
+  sc.camera.width = 1000, sc.camera.height = 10;
+  sh_cli_resize(&sc, 40, 0);
+  SH_CHECK(sc.camera.width == 40 && sc.camera.height == 1);
+  sc.camera.width = 64, sc.camera.height = 48;
+  sh_cli_resize(&sc, 0, 24);
+  SH_CHECK(sc.camera.width == 32 && sc.camera.height == 24);
+  sh_cli_resize(&sc, 0, 0);
+  SH_CHECK(sc.camera.width == 32 && sc.camera.height == 24);
+  sh_cli_resize(&sc, 10, 20);
+  SH_CHECK(sc.camera.width == 10 && sc.camera.height == 20);
+
   /* Outputs: extensions and directories, made with create. */
   SH_CHECK(sh_cli_check_output("t", "-o", "a.exr", "exr,png", 0));
   SH_CHECK(!sh_cli_check_output("t", "-o", "a.tif", "exr,png", 0));

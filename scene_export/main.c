@@ -18,6 +18,7 @@ static const char *const TOOL = "scene_export";
 typedef struct args {
   const char *output, *scale;
   int to, quality, strict, parents, verbose;
+  long width, height; /* --width, --height; 0: the scene's */
 } args;
 
 enum { MAX_TARGETS = 16 };
@@ -49,6 +50,7 @@ static sh_cli_option options[] = {
      "from it: the same image, docs/scene_export.md \"Precision\"), a "
      "positive number of target units per scene unit (the origin still "
      "chosen), or none (the scene's own units and position)"},
+    SH_CLI_SIZE_OPTIONS(FIELD(width), FIELD(height)),
     {"verbose", 'v', SH_CLI_FLAG, NULL, 0, FIELD(verbose), 0, 0, 0, 1, NULL,
      NULL, NULL, NULL, "print the scale and origin the export chose"},
 };
@@ -102,7 +104,7 @@ int main(int argc, char **argv) {
       "the same\nimage in linear radiance (docs/scene_export.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, help_targets, NULL,
       NULL, NULL, NULL, NULL};
-  args a = {NULL, NULL, -1, SE_QUALITY_DRAFT, 0, 0, 0};
+  args a = {NULL, NULL, -1, SE_QUALITY_DRAFT, 0, 0, 0, 0, 0};
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
@@ -120,6 +122,10 @@ int main(int argc, char **argv) {
 
   sh_scene *scene = NULL;
   if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], 0, &scene))) return rc;
+  /* The image size every target writes (the .ini's Width/Height and the
+   * .pov's aspect, the Blender data's render size, the JSON camera) is the
+   * camera's: --width/--height change it as they do the renderers'. */
+  sh_cli_resize(scene, a.width, a.height);
   sh_error err = SH_ERROR_INIT;
   se_notes notes = {0};
   se_frame frame;

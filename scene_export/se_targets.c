@@ -16,8 +16,8 @@ const se_target se_targets[] = {
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
      "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "
      "blender -b -P DIR/NAME.py -- --engine cycles|eevee --out IMG.exr "
-     "[--samples N] [--seed S] (EEVEE needs a display: run it under "
-     "xvfb-run)"},
+     "[--samples N] [--seed S] [--width W] [--height H] (EEVEE needs a "
+     "display: run it under xvfb-run)"},
     {"json", "json", se_json_build,
      "OUT = FILE.json: the normalised scene (defaults filled in, transforms "
      "as matrices, files relative to OUT, copied beside it when outside its "

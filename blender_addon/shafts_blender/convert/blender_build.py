@@ -13,8 +13,11 @@
 # used as data. Render with
 #
 #   blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr
-#           [--samples N] [--seed S]
+#           [--samples N] [--seed S] [--width W] [--height H]
 #
+# (--width/--height as scene_export's: the image size instead of the
+# data's, the other side following the aspect unless given, the vertical
+# field of view kept.)
 # (EEVEE needs an OpenGL context: run it under xvfb-run.) The image is
 # linear radiance, 32-bit float OpenEXR, one sample position per pixel
 # centre. Exit status: 0 on success, 2 for bad arguments or data, 1 if
@@ -31,7 +34,7 @@ import bpy
 from mathutils import Matrix
 
 USAGE = ("usage: blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr "
-         "[--samples N] [--seed S]")
+         "[--samples N] [--seed S] [--width W] [--height H]")
 
 
 class DataError(Exception):
@@ -50,14 +53,16 @@ def json_object(value, what, optional=False):
 
 def parse_args(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
-    opts = {"engine": "cycles", "out": None, "samples": None, "seed": None}
+    opts = {"engine": "cycles", "out": None, "samples": None, "seed": None,
+            "width": None, "height": None}
     i = 0
     while i < len(args):
         key = args[i]
         if key in ("-h", "--help"):
             print(USAGE)
             sys.exit(0)
-        if key not in ("--engine", "--out", "--samples", "--seed") or i + 1 >= len(args):
+        if key not in ("--engine", "--out", "--samples", "--seed", "--width",
+                       "--height") or i + 1 >= len(args):
             raise DataError("unknown or incomplete option %r; %s" % (key, USAGE))
         value = args[i + 1]
         if key == "--engine":
@@ -66,6 +71,12 @@ def parse_args(argv):
             opts["engine"] = value
         elif key == "--out":
             opts["out"] = os.path.abspath(value)
+        elif key in ("--width", "--height"):
+            # As scene_export and the renderers word it (core/sh_cli.h).
+            if not (value.isascii() and value.isdigit()) or not 1 <= int(value) <= 65536:
+                raise DataError("%s: expected an integer from 1 to 65536, found '%s'"
+                                % (key, value))
+            opts[key[2:]] = int(value)
         else:
             try:
                 number = int(value)
@@ -758,11 +769,23 @@ def box_mesh(lo, hi):
     return mesh
 
 
+def image_size(r, opts):
+    """The image size: the data's render size, or --width/--height with the
+    other side following the data's aspect (as sh_cli_resize does; the
+    camera keeps its vertical field of view)."""
+    w, h = int(r.get("width", 64)), int(r.get("height", 48))
+    ow, oh = opts.get("width"), opts.get("height")
+    if ow and not oh:
+        oh = max(1, int(math.floor(ow * h / w + 0.5)))
+    elif oh and not ow:
+        ow = max(1, int(math.floor(oh * w / h + 0.5)))
+    return (ow, oh) if ow else (w, h)
+
+
 def setup_render(scene, data, opts, medium_box):
     r = data.get("render", {})
     render = scene.render
-    render.resolution_x = int(r.get("width", 64))
-    render.resolution_y = int(r.get("height", 48))
+    render.resolution_x, render.resolution_y = image_size(r, opts)
     render.resolution_percentage = 100
     render.pixel_aspect_x = render.pixel_aspect_y = 1.0
     render.dither_intensity = 0.0
