@@ -19,4 +19,11 @@
  * frees); on -1 it is NULL. */
 int sh__confined(const char *path, const char *root, char **resolved);
 
+/* As sh__confined, but a `path` that does not exist is placed all the same:
+ * its deepest existing ancestor resolved (links followed) and the rest of
+ * its components joined with "." and ".." taken by name. So a missing
+ * "../x.obj" is outside the tree before it is missing, and the scene is
+ * told which. -1 only if the root cannot be resolved or memory runs out. */
+int sh__confined_name(const char *path, const char *root, char **resolved);
+
 #endif

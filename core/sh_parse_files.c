@@ -40,19 +40,11 @@ sh_status sh__resolve_file(sh__parser *p, const char *key, const char *name,
 sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
                          const char *path, const char *kind,
                          sh_status empty_status) {
-  struct stat sb;
-  if (stat(path, &sb) != 0)
-    return sh__fail_at(&p->c, key, SH_ERR_IO,
-                       "cannot open the %s '%s' (resolved to '%s'): %s", kind,
-                       name, path, strerror(errno));
-  if (!S_ISREG(sb.st_mode))
-    return sh__fail_at(&p->c, key, SH_ERR_IO,
-                       "the %s '%s' (resolved to '%s') is %s, not a regular "
-                       "file",
-                       kind, name, path, sh_file_kind(sb.st_mode));
-  /* Relative names must stay in the scene's tree. */
+  /* Relative names must stay in the scene's tree: checked first, so that
+   * a name outside it is refused as such whether or not the file exists
+   * (a missing "../x.obj" was reported as missing). */
   char *real = NULL;
-  int inside = name[0] == '/' ? 1 : sh__confined(path, p->base_dir, &real);
+  int inside = name[0] == '/' ? 1 : sh__confined_name(path, p->base_dir, &real);
   if (inside == 0) {
     sh_status st = sh__fail_at(
         &p->c, key, SH_ERR_SCENE,
@@ -63,6 +55,16 @@ sh_status sh__check_file(sh__parser *p, const char *key, const char *name,
     return st;
   }
   free(real);
+  struct stat sb;
+  if (stat(path, &sb) != 0)
+    return sh__fail_at(&p->c, key, SH_ERR_IO,
+                       "cannot open the %s '%s' (resolved to '%s'): %s", kind,
+                       name, path, strerror(errno));
+  if (!S_ISREG(sb.st_mode))
+    return sh__fail_at(&p->c, key, SH_ERR_IO,
+                       "the %s '%s' (resolved to '%s') is %s, not a regular "
+                       "file",
+                       kind, name, path, sh_file_kind(sb.st_mode));
   if (sb.st_size == 0)
     return sh__fail_at(&p->c, key, empty_status,
                        "the %s '%s' (resolved to '%s') is an empty file", kind,

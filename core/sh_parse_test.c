@@ -945,6 +945,15 @@ static void test_parse_base_dir(void) {
   sh_error_clear(&err);
 }
 
+/* A minimal scene with one mesh shape whose file is `file`, into text. */
+static void mesh_scene(char *text, size_t size, const char *file) {
+  snprintf(text, size,
+           MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
+                        "[{\"type\": \"mesh\", \"material\": \"m\", "
+                        "\"file\": \"%s\"}]}",
+           file);
+}
+
 /* Files named relatively must stay in the scene's directory tree, however
  * the name is spelt: "..", "./..", "a/../..", doubled slashes and links
  * that point out are refused with a located error (issue 11). */
@@ -959,35 +968,68 @@ static void test_confined_names(void) {
                          "..//tet.obj", "link.obj"};
   for (int i = 0; i < 5; i++) {
     char text[512];
-    snprintf(text, sizeof text,
-             MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
-                          "[{\"type\": \"mesh\", \"material\": \"m\", "
-                          "\"file\": \"%s\"}]}",
-             names[i]);
+    mesh_scene(text, sizeof text, names[i]);
     sh_scene *s = NULL;
     sh_error err = SH_ERROR_INIT;
     sh_status st = sh_scene_parse(text, "in-memory", sub, &s, &err);
-    /* "x/../../tet.obj" names a directory x that does not exist: the OS
-     * refuses it before confinement has a say. */
-    SH_CHECK(st == (i == 2 ? SH_ERR_IO : SH_ERR_SCENE));
+    /* "x/../../tet.obj" names a directory x that does not exist: it is
+     * outside the tree all the same (its ".." taken by name), and said so
+     * before the OS would say that x is missing. */
+    SH_CHECK(st == SH_ERR_SCENE);
     SH_CHECK(s == NULL);
-    if (i != 2) {
-      SH_CHECK(strstr(err.message, "outside the scene's directory") != NULL);
-      SH_CHECK(strcmp(err.path, "shapes[0].file") == 0 && err.line > 0);
-    }
+    SH_CHECK(strstr(err.message, "outside the scene's directory") != NULL);
+    SH_CHECK(strcmp(err.path, "shapes[0].file") == 0 && err.line > 0);
     sh_scene_free(s);
-    /* From the parent directory the same file is inside the tree. */
+    /* From the parent directory the same file is inside the tree (but
+     * "sub/x/../../tet.obj" passes through the missing x: the OS refuses
+     * it). */
     if (i < 4) {
-      snprintf(text, sizeof text,
-               MINIMAL_HEAD ", \"materials\": {\"m\": {}}, \"shapes\": "
-                            "[{\"type\": \"mesh\", \"material\": \"m\", "
-                            "\"file\": \"sub/%s\"}]}",
-               names[i]);
+      char name[64];
+      snprintf(name, sizeof name, "sub/%s", names[i]);
+      mesh_scene(text, sizeof text, name);
       st = sh_scene_parse(text, "in-memory", tmpdir, &s, &err);
       SH_CHECK(st == (i == 2 ? SH_ERR_IO : SH_OK));
       sh_scene_free(s);
     }
     sh_error_clear(&err);
+  }
+  /* A name outside the tree is refused as outside whether or not the file
+   * exists: a missing "../x.obj" was reported as a missing file, which
+   * sent the user looking for it rather than moving it into the tree. A
+   * missing file inside the tree is still missing (SH_ERR_IO). */
+  const char *missing[] = {"../missing.obj", "../nodir/missing.obj",
+                           "x/../../missing.obj", "./..//missing.obj",
+                           "missing.obj", "nodir/../missing.obj"};
+  for (int i = 0; i < 6; i++) {
+    for (int map = 0; map < 2; map++) {
+      char text[512];
+      if (map)
+        snprintf(text, sizeof text,
+                 MINIMAL_HEAD ", \"lights\": [{\"type\": \"spot\", "
+                 "\"position\": [0, 2, 0], \"direction\": [0, -1, 0], "
+                 "\"intensity\": [1, 1, 1], \"outer_angle_deg\": 20, "
+                 "\"light_map\": {\"image\": \"%s\"}}]}",
+                 missing[i]);
+      else
+        mesh_scene(text, sizeof text, missing[i]);
+      sh_scene *s = NULL;
+      sh_error err = SH_ERROR_INIT;
+      sh_status st = sh_scene_parse(text, "in-memory", sub, &s, &err);
+      SH_CHECK(s == NULL);
+      if (i < 4) {
+        SH_CHECK(st == SH_ERR_SCENE);
+        SH_CHECK(strstr(err.message, "outside the scene's directory") != NULL);
+        char want[320];
+        path_in_tmp(want, sizeof want, i == 1 ? "nodir/missing.obj" : "missing.obj");
+        SH_CHECK(strstr(err.message, want) != NULL); /* where it resolves */
+      } else {
+        SH_CHECK(st == SH_ERR_IO);
+        SH_CHECK(strstr(err.message, "cannot open the") != NULL);
+      }
+      SH_CHECK(strstr(err.path, map ? "light_map.image" : "shapes[0].file") != NULL);
+      sh_scene_free(s);
+      sh_error_clear(&err);
+    }
   }
   unlink(link);
   rmdir(sub);
