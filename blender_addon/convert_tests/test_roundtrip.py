@@ -193,6 +193,61 @@ for name, kind in (("spot_gobo", "spot"), ("sun_window", "directional")):
     H.check("%s: the same image (mean relative difference %.2g <= %g)"
             % (name, rel, MAP_BOUND), rel <= MAP_BOUND)
 
+# Phases Cycles cannot hold: the import says which engines are exact and how
+# far Cycles' lobes are from the phase (importer.phase_messages; the
+# largest relative error over every angle, computed from the writer's
+# lobes), and the export gives our engines the scene's own phase back,
+# exactly, with the coefficients and no warning. Changing a lobe's g in the
+# node graph falls back to the graph's lobes.
+PHASES = {"phase_rayleigh": ({"type": "rayleigh"}, "Rayleigh", "mixture of 2", "7.6%"),
+          "phase_nishita_hazy": ({"type": "nishita_hazy"}, "Nishita hazy",
+                                 "one Henyey-Greenstein lobe, g = 0.4,", "48%"),
+          "phase_nishita_murky": ({"type": "nishita_murky"}, "Nishita murky",
+                                  "one Henyey-Greenstein lobe, g = 0.567,", "252%")}
+for name, (want_phase, label, lobes, figure) in PHASES.items():
+    A.reset()
+    path = H.scene_copy(os.path.join(testdata, name + ".json"), work, (32, 24))
+    notes = importer.import_scene(bpy.context, path, lib_path=lib)
+    said = [n for n in notes if "phase is exact in the Shafts Tracer and Shafts Sweep" in n]
+    H.check("%s: one note says the %s phase is exact in our engines, and by how much "
+            "Cycles is off" % (name, label),
+            len(said) == 1 and ("the %s phase" % label) in said[0] and lobes in said[0]
+            and ("up to %s off the phase" % figure) in said[0]
+            and "EEVEE by one lobe" in said[0], notes)
+    H.check("%s: the writer's bare 'Cycles has no ... phase' note is replaced" % name,
+            not any("Cycles has no" in n for n in notes), notes)
+    e = export_scene(depsgraph())
+    with open(path) as f:
+        m0 = json.load(f)["medium"]
+    m1 = e.scene["medium"]
+    H.check("%s: our engines get the scene's own phase, no warning" % name,
+            m1["phase"] == want_phase and not e.warnings, str((m1["phase"], e.warnings)))
+    for key in ("sigma_s", "sigma_a"):
+        H.near("%s: medium %s" % (name, key), m1[key], m0[key])
+    if name == "phase_rayleigh":
+        mat = bpy.data.materials["medium"]
+        lobe = next(nd for nd in mat.node_tree.nodes if nd.bl_idname == "ShaderNodeVolumeScatter")
+        lobe.inputs["Anisotropy"].default_value = 0.5
+        e = export_scene(depsgraph())
+        H.check("phase_rayleigh: a lobe's g changed in Blender, the graph's lobes are read",
+                e.scene["medium"]["phase"]["type"] == "henyey_greenstein"
+                and any("scattering lobes" in w for w in e.warnings),
+                str((e.scene["medium"]["phase"], e.warnings)))
+A.reset()
+cs = os.path.join(work, "cs.json")
+with open(os.path.join(testdata, "point_medium.json")) as f:
+    scene_cs = json.load(f)
+scene_cs["medium"]["phase"] = {"type": "cornette_shanks", "g": 0.7}
+with open(cs, "w") as f:
+    json.dump(scene_cs, f)
+notes = importer.import_scene(bpy.context, cs, lib_path=lib)
+H.check("cornette_shanks: exact in our engines, Cycles' lobe 37% off at worst",
+        any("the Cornette-Shanks (g = 0.7) phase is exact" in n and "up to 37% off" in n
+            for n in notes), notes)
+H.check("cornette_shanks: our engines get it back",
+        export_scene(depsgraph()).scene["medium"]["phase"]
+        == {"type": "cornette_shanks", "g": 0.7})
+
 # A scene file the parser refuses: a located error, nothing imported.
 bad = os.path.join(work, "bad.json")
 with open(bad, "w") as f:

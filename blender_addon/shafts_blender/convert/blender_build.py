@@ -744,6 +744,28 @@ def medium_properties(item):
     return p
 
 
+def phase_record(item, engine):
+    """For a homogeneous medium, the scene's own phase and the g of the
+    lobes the material holds for `engine` (raw property shafts_phase), or
+    None without the scene's medium (data medium.scene). Cycles has no
+    Nishita, Rayleigh or Cornette-Shanks phase; the add-on's converter
+    (convert/medium.py) gives our engines this exact phase back as long as
+    the node graph still holds these lobes."""
+    m = json_object(item.get("scene"), "medium.scene", optional=True)
+    if m is None:
+        return None
+    phase, g = _phase_number(m.get("phase"), "medium.scene.phase")
+    mix = item.get("cycles_mixture")
+    if engine == "cycles" and isinstance(mix, dict) and isinstance(mix.get("scatter"), list):
+        lobes = [numbers([json_object(lobe, "medium.cycles_mixture.scatter[%d]" % k)
+                          .get("anisotropy")], 1, "medium.cycles_mixture.scatter")[0]
+                 for k, lobe in enumerate(mix["scatter"])]
+    else:
+        v = json_object(item.get("volume"), "medium.volume")
+        lobes = numbers([v.get("anisotropy")], 1, "medium.volume.anisotropy")
+    return {"phase": phase, "phase_g": g, "lobes": lobes}
+
+
 def set_frame_properties(collection, data):
     """The writer's frame on the collection (shafts_scale, shafts_origin,
     shafts_axes: a scene point p is at (p - origin) scale along the named
@@ -1058,6 +1080,10 @@ def build_into(scene, collection, data, base_dir, engine):
         props = medium_properties(item)
         if props is not None:
             mesh.materials[0]["shafts_medium"] = props
+        elif atmo is None:
+            written = phase_record(item, engine)
+            if written is not None:
+                mesh.materials[0]["shafts_phase"] = written
         new_object("medium", mesh, collection)
         medium_box = (lo, hi)
     return medium_box

@@ -27,10 +27,11 @@ sh_error accessors.
 import ctypes
 import json
 import os
+import re
 import shutil
 import tempfile
 
-from . import blender_build
+from . import blender_build, phase
 from .. import shafts
 
 
@@ -63,7 +64,9 @@ def blender_data(scene_path, directory, lib_path=None):
 def import_scene(context, scene_path, lib_path=None):
     """Adds the scene file's objects to a new collection named after it in
     the current scene, makes its camera the scene's camera and sets the
-    render size. Returns the writer's notes (what Cycles approximates).
+    render size. Returns the import's messages: the writer's notes (what
+    Cycles approximates), each phase Cycles cannot hold said with which
+    engines render it exactly (phase_messages).
     On failure nothing is left in the scene and ImportFailed is raised."""
     import bpy
     scene = context.scene
@@ -79,7 +82,7 @@ def import_scene(context, scene_path, lib_path=None):
         scene.render.resolution_x = int(r.get("width", scene.render.resolution_x))
         scene.render.resolution_y = int(r.get("height", scene.render.resolution_y))
         scene.render.resolution_percentage = 100
-        return frame_message(collection, data) + [str(n) for n in data.get("notes", [])]
+        return frame_message(collection, data) + notes(data)
     except blender_build.DataError as e:
         _remove(collection)
         raise ImportFailed(str(e))
@@ -88,6 +91,62 @@ def import_scene(context, scene_path, lib_path=None):
         raise
     finally:
         shutil.rmtree(work, ignore_errors=True)
+
+
+# The writer's note on a phase Cycles cannot hold (se_blender.c,
+# se_blender_atmo.c): the import says more (phase_messages).
+WRITER_PHASE_NOTE = re.compile(r"Cycles has no \S+ phase")
+
+
+def notes(data):
+    """The import's messages on the writer's data: its notes, those on the
+    phase replaced by phase_messages, which also say which engines are
+    exact."""
+    kept = [str(n) for n in data.get("notes", []) if not WRITER_PHASE_NOTE.search(str(n))]
+    return phase_messages(data) + kept
+
+
+def _distinct_lobes(gs):
+    """Cycles' phase of Volume Scatter lobes: it merges lobes of equal g and
+    sums the rest without their weights (medium.py), an equal-weight
+    mixture of the distinct g."""
+    distinct = sorted({round(float(g), 6) for g in gs})
+    return [(1.0 / len(distinct), g) for g in distinct]
+
+
+def phase_messages(data):
+    """One sentence for each phase of the scene's medium that Cycles cannot
+    hold (phase.message): our engines render it exactly (the import
+    records it: the material's shafts_medium or shafts_phase), Cycles by
+    the lobes in the data, off by as much as phase.largest_error says."""
+    item = data.get("medium")
+    scene_medium = item.get("scene") if isinstance(item, dict) else None
+    if not isinstance(scene_medium, dict):
+        return []
+    out = []
+    if scene_medium.get("type") == "atmosphere":
+        atmo = item.get("atmosphere", {})
+        parts = [("medium.rayleigh", {"type": "rayleigh"}, 0)]
+        if isinstance(scene_medium.get("mie"), dict):
+            parts.append(("medium.mie", scene_medium["mie"].get("phase", {}), 1))
+        for what, p, part in parts:
+            # One lobe chosen per point with these probabilities: exact in
+            # expectation, so the mixture's weights are theirs.
+            lobes = [(float(s["to"]) - float(s["from"]), float(s["anisotropy"]))
+                     for s in atmo.get("scatter", []) if s.get("part") == part]
+            if lobes and not phase.exact_in_cycles(p):
+                out.append(phase.message(what, p, lobes, atmosphere=True))
+        return out
+    p = scene_medium.get("phase", {"type": "isotropic"})
+    if phase.exact_in_cycles(p):
+        return out
+    mix = item.get("cycles_mixture")
+    if isinstance(mix, dict) and mix.get("scatter"):
+        lobes = _distinct_lobes(s["anisotropy"] for s in mix["scatter"])
+    else:
+        lobes = [(1.0, float(item.get("volume", {}).get("anisotropy", 0.0)))]
+    out.append(phase.message("medium", p, lobes))
+    return out
 
 
 # Blender's X, Y, Z as the scene's axes in the writer's usual frame

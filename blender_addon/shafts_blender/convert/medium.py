@@ -30,6 +30,12 @@ stays Cycles' (scene_export's mixtures come back exactly but for the phase); emi
 approximated with warnings. g is clamped to +-0.999 as Cycles clamps it, and
 g = 0 is the isotropic phase.
 
+A homogeneous medium imported from a scene file carries the scene's own
+phase on its material (raw property shafts_phase, blender_build.phase_record:
+Cycles has no Nishita, Rayleigh or Cornette-Shanks phase, our engines do);
+while the graph still holds the lobes the writer built for it, that phase
+is the medium's (written_phase), else the graph's lobes as above.
+
 A material whose add-on properties (material.shafts_medium, properties.py)
 name height fog or an atmosphere is read from them instead, exactly
 (from_properties): the node graph, which Cycles renders, is then not read.
@@ -104,9 +110,31 @@ def _walk(node, v, w, depth=0):
                  "for; it is left out." % (what, node.name))
 
 
-def coefficients(output_node, what, warnings):
+def written_phase(mat):
+    """scene_export's record of a homogeneous medium's own phase on its
+    material (raw property shafts_phase, blender_build.phase_record): (the
+    format's phase object, the sorted g of the lobes the writer built), or
+    None."""
+    raw = mat.get("shafts_phase") if mat is not None else None
+    if raw is None:
+        return None
+    try:
+        t = PHASE_TYPES[int(raw.get("phase"))]
+        phase = {"type": t}
+        if t in ("henyey_greenstein", "cornette_shanks"):
+            phase["g"] = float(raw.get("phase_g"))
+        lobes = sorted({round(float(g), 6) for g in raw.get("lobes")})
+    except (IndexError, TypeError, ValueError, AttributeError):
+        return None
+    return phase, lobes
+
+
+def coefficients(output_node, what, warnings, written=None):
     """(sigma_s, sigma_a, phase) of the shader on an output node's Volume
-    input, or None if it gives no medium."""
+    input, or None if it gives no medium. With `written` (written_phase of
+    the material) and the graph's lobes still the ones the writer built,
+    the phase is the scene's own, exactly: Cycles cannot hold a Nishita,
+    Rayleigh or Cornette-Shanks phase, our engines can."""
     if output_node is None or "Volume" not in output_node.inputs:
         return None
     node, _ = nd.source(output_node.inputs["Volume"])
@@ -123,6 +151,8 @@ def coefficients(output_node, what, warnings):
     gs = sorted({round(gv, 6) for wt, gv in v.lobes if wt > 0})
     gmean = sum(gs) / len(gs) if gs else 0.0
     n = len(gs)
+    own = (written is not None and len(written[1]) == n
+           and all(abs(a - b) <= 1e-5 for a, b in zip(written[1], gs)))
     if n > 1:
         # Cycles 3.4 merges closures of equal g and sums the phases of the
         # rest without their weights (docs/scene_export.md, facts verified by
@@ -135,12 +165,15 @@ def coefficients(output_node, what, warnings):
                          "model (Cycles sums the phases of its %d lobes); its absorption "
                          "is clamped at 0." % (what, n))
         sigma_a = np.maximum(sigma_a, 0.0)
+    if n > 1 and not own:
         warnings.add("%s has %d scattering lobes, whose phases Cycles sums; the scene's "
                      "medium scatters %d times their density with one Henyey-Greenstein "
                      "lobe of their mean g = %.4g." % (what, n, n, gmean))
     gmean = min(max(gmean, -G_MAX), G_MAX)
     phase = ({"type": "isotropic"} if gmean == 0.0
              else {"type": "henyey_greenstein", "g": float(gmean)})
+    if own:
+        phase = dict(written[0])
     return ([float(x) for x in sigma_s], [float(x) for x in sigma_a], phase)
 
 

@@ -184,7 +184,8 @@ class _Collector:
             return
         coeffs = None
         if fixed is None:
-            coeffs = md.coefficients(mt.surface_output(mat), what, self.warnings)
+            coeffs = md.coefficients(mt.surface_output(mat), what, self.warnings,
+                                     md.written_phase(mat))
             if coeffs is None:
                 return
         if not exact:
