@@ -130,14 +130,23 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
   if (!name || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
     return NULL;
   if (fs->overread) return NULL; /* the load is refused: no more work */
+  /* Outside the tree is refused before missing is said: a missing
+   * "../x.bin" is placed by its names (sh__confined_name). */
   char *resolved = NULL;
-  int inside = sh__confined(name, fs->root, &resolved);
+  int inside = sh__confined_name(name, fs->root, &resolved);
+  free(resolved);
+  resolved = NULL;
   if (inside == 0) {
+    if (!fs->refused[0]) snprintf(fs->refused, sizeof fs->refused, "%s", name);
+    return NULL;
+  }
+  inside = sh__confined(name, fs->root, &resolved);
+  if (inside < 0) return NULL; /* does not exist: assimp says so */
+  if (inside == 0) { /* moved out since (a link changed): refused as well */
     free(resolved);
     if (!fs->refused[0]) snprintf(fs->refused, sizeof fs->refused, "%s", name);
     return NULL;
   }
-  if (inside < 0) return NULL; /* does not exist: assimp says so */
   /* Every file other than the mesh itself is kept, for the outputs' check
    * (a render must not overwrite what it reads). */
   char *self = NULL;

@@ -300,6 +300,23 @@ static void test_confined(void) {
       "sub/mtl.obj", "mtllib ../outside.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   SH_CHECK(sh_mesh_load(obj, sub, &m, &err) == SH_ERR_MESH);
   SH_CHECK(strstr(err.message, "outside.mtl") != NULL);
+  /* A file outside the tree that does not exist is refused as outside,
+   * not left to assimp as missing: a glTF buffer, an OBJ's library. */
+  const char *gone = escape_gltf("gone.gltf", "../nodir/gone.bin");
+  SH_CHECK(sh_mesh_load(gone, sub, &m, &err) == SH_ERR_MESH);
+  SH_CHECK(strstr(err.message, "outside") != NULL &&
+           strstr(err.message, "gone.bin") != NULL);
+  obj = write_file("sub/gone.obj",
+                   "mtllib ../gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  SH_CHECK(sh_mesh_load(obj, sub, &m, &err) == SH_ERR_MESH);
+  SH_CHECK(strstr(err.message, "outside") != NULL &&
+           strstr(err.message, "gone.mtl") != NULL);
+  /* Inside the tree a missing library is still assimp's business: it
+   * loads without it. */
+  obj = write_file("sub/gone_inside.obj",
+                   "mtllib gone.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  SH_CHECK(sh_mesh_load(obj, sub, &m, &err) == SH_OK);
+  sh_mesh_free(&m);
   /* Vertices that are not finite floats, with the vertex named. */
   const char *bad[] = {"v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
                        "v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n",
