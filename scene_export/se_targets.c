@@ -16,8 +16,12 @@ const se_target se_targets[] = {
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
      "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "
      "blender -b -P DIR/NAME.py -- --engine cycles|eevee --out IMG.exr "
-     "[--samples N] [--seed S] [--width W] [--height H] (EEVEE needs a "
-     "display: run it under xvfb-run)"},
+     "[--samples N] [--seed S] [--width W] [--height H] [--one-pass] "
+     "(EEVEE needs a display: run it under xvfb-run). Cycles renders a "
+     "height fog or atmosphere whose coefficients differ between colour "
+     "channels once per channel with grey coefficients and composes the "
+     "image (Cycles 3.4 renders such media too dark in one pass); "
+     "--one-pass renders it once"},
     {"json", "json", se_json_build,
      "OUT = FILE.json: the normalised scene (defaults filled in, transforms "
      "as matrices, files relative to OUT, copied beside it when outside its "

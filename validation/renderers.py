@@ -488,12 +488,13 @@ class PovRay(Adapter):
 
 
 def _blender_frame_seconds(text):
-    """Blender's ` Time: MM:SS.ss (Saving: ...)` line, in seconds."""
+    """Blender's ` Time: MM:SS.ss (Saving: ...)` lines, in seconds, summed
+    (the exported script renders a chromatic height fog or atmosphere in
+    Cycles once per colour channel)."""
     m = re.findall(r"^\s*Time:\s*(?:(\d+):)?(\d+):([\d.]+)", text, re.M)
     if not m:
         return None
-    h, mnt, s = m[-1]
-    return int(h or 0) * 3600 + int(mnt) * 60 + float(s)
+    return sum(int(h or 0) * 3600 + int(mnt) * 60 + float(s) for h, mnt, s in m)
 
 
 class _Blender(Adapter):
@@ -510,14 +511,14 @@ class _Blender(Adapter):
         return _export_missing(ctx, "blender")
 
     def _run_blender(self, ctx, prefix, engine, samples, work, log, env=None, pre=(),
-                     seed=1):
+                     seed=1, extra=()):
         py = work / "scene.py"
         out = work / "out.exr"
         cmd = list(prefix) + ["blender", "-b"]
         for p in pre:
             cmd += ["-P", p]
         cmd += ["-P", py, "--", "--engine", engine, "--out", out,
-                "--samples", samples, "--seed", seed]
+                "--samples", samples, "--seed", seed] + list(extra)
         try:
             wall, text = command(cmd, cwd=work, env=env, timeout=ctx.timeout, log=log)
         except RunFailed as e:
@@ -551,9 +552,12 @@ class Cycles(_Blender):
 
     def render(self, ctx, scene_path, params, work, log):
         _export(ctx, scene_path, "blender", work / "scene.py", log)
-        # A second seed (validation/peers.py) measures Cycles' noise.
+        # A second seed (validation/peers.py) measures Cycles' noise;
+        # one_pass renders a chromatic ray-marched medium in one pass, as
+        # Cycles does (validation/cycles_channels.py measures its bias).
         return self._run_blender(ctx, [], "cycles", params["samples"], work, log,
-                                 seed=params.get("seed", 1))
+                                 seed=params.get("seed", 1),
+                                 extra=["--one-pass"] if params.get("one_pass") else [])
 
 
 EEVEE_SCRIPT = HERE / "blender_eevee.py"

@@ -13,16 +13,23 @@
 # used as data. Render with
 #
 #   blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr
-#           [--samples N] [--seed S] [--width W] [--height H]
+#           [--samples N] [--seed S] [--width W] [--height H] [--one-pass]
 #
 # (--width/--height as scene_export's: the image size instead of the
 # data's, the other side following the aspect unless given, the vertical
 # field of view kept.)
 # (EEVEE needs an OpenGL context: run it under xvfb-run.) The image is
 # linear radiance, 32-bit float OpenEXR, one sample position per pixel
-# centre. Exit status: 0 on success, 2 for bad arguments or data, 1 if
+# centre. Cycles 3.4 renders a ray-marched (height fog, atmosphere) medium
+# whose coefficients differ between colour channels too dark (it picks the
+# channel it samples distances in from one random number per path, at
+# every step: docs/scene_export.md, "The atmosphere in Cycles"), so the
+# script renders such a scene once per channel with grey coefficients and
+# composes channel c of pass c into the image (--one-pass: one render, as
+# Cycles does it). Exit status: 0 on success, 2 for bad arguments or data, 1 if
 # rendering fails. See docs/scene_export.md for what is exact and what is
 # approximated.
+import array
 import json
 import math
 import os
@@ -34,7 +41,7 @@ import bpy
 from mathutils import Matrix
 
 USAGE = ("usage: blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr "
-         "[--samples N] [--seed S] [--width W] [--height H]")
+         "[--samples N] [--seed S] [--width W] [--height H] [--one-pass]")
 
 
 class DataError(Exception):
@@ -54,13 +61,17 @@ def json_object(value, what, optional=False):
 def parse_args(argv):
     args = argv[argv.index("--") + 1:] if "--" in argv else []
     opts = {"engine": "cycles", "out": None, "samples": None, "seed": None,
-            "width": None, "height": None}
+            "width": None, "height": None, "one_pass": False}
     i = 0
     while i < len(args):
         key = args[i]
         if key in ("-h", "--help"):
             print(USAGE)
             sys.exit(0)
+        if key == "--one-pass":
+            opts["one_pass"] = True
+            i += 1
+            continue
         if key not in ("--engine", "--out", "--samples", "--seed", "--width",
                        "--height") or i + 1 >= len(args):
             raise DataError("unknown or incomplete option %r; %s" % (key, USAGE))
@@ -1089,6 +1100,119 @@ def build_into(scene, collection, data, base_dir, engine):
     return medium_box
 
 
+# Cycles 3.4's ray marching (intern/cycles/kernel/integrator/shade_volume.h,
+# volume_integrate_heterogeneous) picks the colour channel it samples a
+# scattering distance in at every step from the same random number
+# (vstate.rphase, drawn once per path), while the channels' probabilities
+# follow the path's throughput; the paths that get through a step are then
+# those whose number picks the channel with the least extinction, and they
+# keep picking it, so a medium whose extinction differs between channels
+# scatters too little (docs/scene_export.md, "The atmosphere in Cycles").
+# With grey coefficients every channel sees the same extinction and the
+# estimate is exact, so such a scene is rendered once per channel.
+CHANNEL_NAMES = ("red", "green", "blue")
+
+
+def chromatic_marched_inputs(scene):
+    """The unlinked colour inputs of the ray-marched (not homogeneous)
+    volume materials of the scene's objects, as (socket, original value)
+    pairs, when one of them differs between its R, G and B; otherwise []
+    (grey or homogeneous media render exactly in one pass)."""
+    inputs, chromatic, seen = [], False, set()
+    for obj in scene.objects:
+        for slot in getattr(obj, "material_slots", []):
+            mat = slot.material
+            if mat is None or mat.name in seen or not mat.use_nodes or mat.node_tree is None:
+                continue
+            seen.add(mat.name)
+            if getattr(mat.cycles, "homogeneous_volume", True):
+                continue
+            tree = mat.node_tree
+            if not any(n.type == "OUTPUT_MATERIAL" and n.inputs["Volume"].is_linked
+                       for n in tree.nodes):
+                continue
+            for n in tree.nodes:
+                for sock in n.inputs:
+                    if sock.type == "RGBA" and not sock.is_linked:
+                        v = tuple(sock.default_value)
+                        inputs.append((sock, v))
+                        chromatic = chromatic or v[0] != v[1] or v[1] != v[2]
+    return inputs if chromatic else []
+
+
+def set_channel(inputs, c):
+    """Every input of chromatic_marched_inputs set to its channel c in R,
+    G and B (its alpha kept); c None restores the original values."""
+    for sock, v in inputs:
+        sock.default_value = v if c is None else (v[c], v[c], v[c], v[3])
+
+
+def render_still(scene, path):
+    """Renders the scene's frame into the image file `path`."""
+    scene.render.filepath = path
+    scene.render.use_file_extension = False
+    bpy.ops.render.render(write_still=True)
+    if not os.path.exists(path):
+        raise RuntimeError("Blender wrote no image")
+    return path
+
+
+def compose_channels(passes, path, scene):
+    """Writes to `path`, in the scene's output format, the image whose
+    channel c is channel c of the image file passes[c] (c = 0, 1, 2), its
+    alpha the first pass's. The files are read and written as linear data
+    (no colour conversion). Raises RuntimeError if they differ in size."""
+    images = [bpy.data.images.load(p, check_existing=False) for p in passes]
+    composed = None
+    try:
+        for im in images:
+            im.colorspace_settings.name = "Non-Color"
+        w, h = images[0].size
+        stride = images[0].channels
+        if any(tuple(im.size) != (w, h) or im.channels != stride for im in images) or stride < 3:
+            raise RuntimeError("the channel passes differ in size or have fewer than 3 channels")
+        out = array.array("f", bytes(4 * stride * w * h))
+        images[0].pixels.foreach_get(out)
+        buf = array.array("f", bytes(4 * stride * w * h))
+        for c in (1, 2):
+            images[c].pixels.foreach_get(buf)
+            out[c::stride] = buf[c::stride]
+        composed = bpy.data.images.new("composed", w, h, alpha=stride == 4, float_buffer=True)
+        composed.colorspace_settings.name = "Non-Color"
+        composed.pixels.foreach_set(out)
+        composed.save_render(path, scene=scene)
+    finally:
+        for im in images + ([composed] if composed is not None else []):
+            bpy.data.images.remove(im)
+    if not os.path.exists(path):
+        raise RuntimeError("Blender wrote no composed image")
+    return path
+
+
+def render_image(scene, opts, staging):
+    """The scene rendered into a file in `staging` (its path): one render,
+    or, for Cycles with a chromatic ray-marched medium and without
+    --one-pass, one per channel with grey coefficients, composed. Says which
+    on stdout."""
+    inputs = (chromatic_marched_inputs(scene)
+              if opts["engine"] == "cycles" and not opts["one_pass"] else [])
+    if not inputs:
+        return render_still(scene, os.path.join(staging, "render.exr"))
+    print("scene_export script: a ray-marched medium's coefficients differ between "
+          "colour channels, which Cycles 3.4 renders too dark: rendering one pass per "
+          "channel with grey coefficients (channel c of pass c; --one-pass renders once)")
+    passes = []
+    try:
+        for c, name in enumerate(CHANNEL_NAMES):
+            print("scene_export script: pass %d of 3: the %s channel's coefficients"
+                  % (c + 1, name), flush=True)
+            set_channel(inputs, c)
+            passes.append(render_still(scene, os.path.join(staging, "pass_%s.exr" % name)))
+    finally:
+        set_channel(inputs, None)
+    return compose_channels(passes, os.path.join(staging, "render.exr"), scene)
+
+
 def main():
     try:
         opts = parse_args(sys.argv)
@@ -1113,12 +1237,7 @@ def main():
     staging = tempfile.mkdtemp(prefix="scene_export_")
     tmp = os.path.join(os.path.dirname(out), ".%s.tmp%d" % (os.path.basename(out), os.getpid()))
     try:
-        rendered = os.path.join(staging, "render.exr")
-        scene.render.filepath = rendered
-        scene.render.use_file_extension = False
-        bpy.ops.render.render(write_still=True)
-        if not os.path.exists(rendered):
-            raise RuntimeError("Blender wrote no image")
+        rendered = render_image(scene, opts, staging)
         shutil.copyfile(rendered, tmp)
         os.replace(tmp, out)
     except Exception as e:  # rendering or writing failed: leave nothing behind
