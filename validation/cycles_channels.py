@@ -18,30 +18,19 @@ second run costs only the comparisons. The figures of docs/scene_export.md,
 """
 
 import argparse
-import re
 import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 from . import renderers
-from .metrics import CompareFailed, compare
+from .metrics import CompareFailed, compare, image_size
 from .peers import TESTDATA, Peers
 from .runs import RunCache
 from .scenes import prepare_file
 
 CHANNELS = ("R", "G", "B")
 WAYS = (("one pass", True), ("per channel", False))
-
-
-def image_size(path):
-    """(width, height) of an image file, from `oiiotool --info`."""
-    info = subprocess.run(["oiiotool", "--info", str(path)], stdout=subprocess.PIPE,
-                          check=True, text=True).stdout
-    m = re.search(r":\s*(\d+)\s*x\s*(\d+)", info)
-    if not m:
-        raise subprocess.CalledProcessError(1, "oiiotool --info %s" % path, info)
-    return int(m.group(1)), int(m.group(2))
 
 
 def channel_image(src, c, dst, rows=None):

@@ -10,6 +10,7 @@ the time it needs to reach a given error.
 
 import json
 import math
+import re
 import subprocess
 
 
@@ -33,6 +34,17 @@ def compare(tool, ref, img, lit=0.01, diff=None, preview=None, exposure=0.0,
         raise CompareFailed(proc.stderr.decode(errors="replace").strip()
                             or "shafts_compare exited with %d" % proc.returncode)
     return json.loads(proc.stdout)
+
+
+def image_size(path):
+    """(width, height) of an image file, from `oiiotool --info`. Raises
+    subprocess.CalledProcessError if oiiotool fails or names no size."""
+    info = subprocess.run(["oiiotool", "--info", str(path)], stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, check=True, text=True).stdout
+    m = re.search(r":\s*(\d+)\s*x\s*(\d+)", info)
+    if not m:
+        raise subprocess.CalledProcessError(1, ["oiiotool", "--info", str(path)], info)
+    return int(m.group(1)), int(m.group(2))
 
 
 def mask_image(src, rects, dst):

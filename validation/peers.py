@@ -22,11 +22,13 @@ is 1 if one is outside BOUNDS (docs/scene_export.md explains them).
 
 import argparse
 import json
+import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 from . import renderers
-from .metrics import CompareFailed, compare
+from .metrics import CompareFailed, compare, image_size, mask_image
 from .runs import LocalExecutor, RunCache, plan_run
 from .scenes import prepare_file
 
@@ -103,23 +105,33 @@ BOUNDS = {
 #    exact but for the Cornette-Shanks Mie phase (g 0.8) as HG 0.844:
 #    measured mean_rel 0.016, ratio 1.024 at 48x36 (the fixed mixture weight
 #    of before: 0.131, ratio 1.254).
-#  atmosphere_sunset_small in Cycles (24x18, the same sky): noise plus the
-#    phases (Rayleigh as two HG lobes, Cornette-Shanks as one): measured
-#    mean_rel 0.146 against a two-seed noise of 0.200, ratio 0.938 at 128
-#    spp (the sky lit by Rayleigh 7-9% dark: coloured extinction, grey air
-#    agrees; docs/scene_export.md, "Non-uniform media"; the rows
-#    near the sun move the ratio between 0.92 and 1.02 from seed to seed).
+#  atmosphere_sunset_small in Cycles (24x18, the same sky, the exported
+#    script's three passes, one per colour channel): noise plus the phases
+#    (Rayleigh as two HG lobes, Cornette-Shanks as one, bright near the sun
+#    as in POV-Ray, ratio 1.037 there): measured mean_rel 0.075 and 0.084
+#    (seeds 1 and 2) against a two-seed noise of 0.104, ratio 1.035 and
+#    1.056 at 128 spp. The sky's top third (SKY_ROWS), far from the sun and
+#    lit mostly by Rayleigh, is where Cycles' own one pass is dark (ratio
+#    0.940 and 0.950; the passes 0.990 and 0.979): held to 3.5% there.
+#    Before the passes: mean_rel 0.146 against a noise of 0.200, ratio
+#    0.938 (docs/scene_export.md, "Non-uniform media").
 #  atmosphere_space_small (the Earth from 30,000 km at 24x18): POV-Ray
 #    measured mean_rel 0.0007, ratio 1.0003 (held like an exact scene);
-#    Cycles 0.029 against a two-seed noise of 0.043, ratio 0.991.
+#    Cycles (three passes) 0.020 and 0.022 against a two-seed noise of
+#    0.026, ratio 0.997 and 0.995, held like an exact scene (one pass was
+#    0.029 against 0.043, ratio 0.991: its blue 2.5% dark).
 SCENE_BOUNDS = {
     ("height_fog_cs", "pov"): {"mean_rel": 0.08, "ratio": 0.05},
     ("sun_disk", "cycles"): {"mean_rel": "noise+0.005", "ratio": 0.03},
     ("atmosphere_sunset", "pov"): {"mean_rel": 0.04, "ratio": 0.05},
-    ("atmosphere_sunset_small", "cycles"): {"mean_rel": "noise+0.05", "ratio": 0.12},
+    ("atmosphere_sunset_small", "cycles"): {"mean_rel": "noise+0.01", "ratio": 0.07,
+                                            "sky_ratio": 0.035},
     ("atmosphere_space_small", "pov"): {"mean_rel": 0.01, "ratio": 0.005},
-    ("atmosphere_space_small", "cycles"): {"mean_rel": "noise+0.02", "ratio": 0.03},
+    ("atmosphere_space_small", "cycles"): {"mean_rel": "noise+0.005", "ratio": 0.01},
 }
+# The rows of the sky's top third (of the image's height) where sky_ratio,
+# the ratio of the luminance sums there, is measured (the rest is masked).
+SKY_ROWS = 1.0 / 3.0
 
 # The settings of each target: POV-Ray's draft media sampling (200
 # intervals of one sample), Cycles at 128 samples (seeds 1 and 2), EEVEE at
@@ -146,7 +158,10 @@ def bound_for(target, kind, result):
     mean = b["mean_rel"]
     if isinstance(mean, str):  # "noise+X"
         mean = result.get("noise", 0.0) + float(mean.split("+")[1])
-    return {"mean_rel": mean, "ratio": b["ratio"]}
+    out = {"mean_rel": mean, "ratio": b["ratio"]}
+    if "sky_ratio" in b:
+        out["sky_ratio"] = b["sky_ratio"]
+    return out
 
 
 def within(result, bound):
@@ -154,7 +169,23 @@ def within(result, bound):
     if bound is None:
         return None
     return (result["mean_rel"] <= bound["mean_rel"]
-            and abs(result["ratio"] - 1.0) <= bound["ratio"])
+            and abs(result["ratio"] - 1.0) <= bound["ratio"]
+            and ("sky_ratio" not in bound
+                 or abs(result["sky_ratio"] - 1.0) <= bound["sky_ratio"]))
+
+
+def sky_ratio(tool, ref, img):
+    """The ratio of the luminance sums of img and ref over the top SKY_ROWS
+    of their rows (the rest masked black, so outside the lit region)."""
+    with tempfile.TemporaryDirectory(prefix="peers_sky_") as d:
+        try:
+            w, h = image_size(ref)
+            top = max(1, int(h * SKY_ROWS))
+            rect = [(0, top, w, h - top)]
+            return compare(tool, mask_image(ref, rect, Path(d) / "ref.exr"),
+                           mask_image(img, rect, Path(d) / "img.exr"))["scale"]
+        except subprocess.CalledProcessError as e:
+            raise CompareFailed("oiiotool: %s" % e) from e
 
 
 def names_for(which, target, check):
@@ -213,6 +244,8 @@ class Peers:
         if len(runs) > 1:
             # The two seeds' difference, relative to the first seed.
             out["noise"] = compare(self.tool, runs[0]["image"], runs[1]["image"])["mean_rel"]
+        if "sky_ratio" in (SCENE_BOUNDS.get((scene.name, target)) or {}):
+            out["sky_ratio"] = sky_ratio(self.tool, ref["image"], runs[0]["image"])
         return out
 
 
@@ -312,9 +345,11 @@ def main(argv=None):
                 except CompareFailed as e:
                     r["diff_image"] = "not written: %s" % e
             results.append(r)
-            print("%-24s %-7s mean_rel %.4f ratio %.4f%s  bound %s  %s" % (
+            print("%-24s %-7s mean_rel %.4f ratio %.4f%s%s  bound %s  %s" % (
                 scene.name, target, r["mean_rel"], r["ratio"],
                 "  noise %.4f" % r["noise"] if "noise" in r else "",
+                "  sky ratio %.4f (bound %.3f)" % (r["sky_ratio"], r["bound"]["sky_ratio"])
+                if "sky_ratio" in r else "",
                 "%.4f" % r["bound"]["mean_rel"] if r["bound"] else "-",
                 {True: "ok", False: "FAIL", None: "(reported)"}[r["pass"]]), flush=True)
             if "diff_image" in r:
