@@ -482,11 +482,9 @@ static json_t *medium(blend *b) {
             "mean cosine).",
             se_phase_name(m->phase.type), n, g1);
   else if (!exact)
-    se_note(b->notes,
-            "medium: Cycles has no %s phase; it is rendered as one Henyey-Greenstein "
-            "lobe, g = %.4g, its mean cosine%s.",
-            se_phase_name(m->phase.type), g1,
-            m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range" : "");
+    se_note_one_lobe(b->notes, "medium", "Cycles", &m->phase, g1,
+                     m->phase.type == SH_PHASE_HENYEY_GREENSTEIN ? " clamped to Cycles' range"
+                                                                 : "");
   /* One Principled Volume for both engines (Cycles' svm_node_principled_volume
    * and EEVEE's node_volume_principled compute the same coefficients):
    * sigma_s = Color Density, sigma_a = (1 - Color) (1 - sqrt(Absorption

@@ -138,16 +138,20 @@ json_t *se_blender_atmosphere(const sh_scene *scene, const se_frame *f,
   for (int x = 0; x < 2; x++) {
     if (index[x] < 0) continue;
     int exact;
-    double gs[SE_HG_MAX_LOBES];
-    int n = se_phase_to_hg_lobes(phases[x], gs, &exact);
+    double gs[SE_HG_MAX_LOBES], ws[SE_HG_MAX_LOBES];
+    int n = se_phase_to_hg_weighted(phases[x], gs, ws, &exact);
     sh_vec3 c = sh_scale(s0[x], 1.0 / l[x]); /* the chosen lobe's sigma_s is c L */
-    double m = sh_max3(c);
-    for (int i = 0; i < n; i++)
+    double m = sh_max3(c), from = 0.0;
+    /* Lobe i owns the slice [from, to) of the part's interval, of length
+     * its weight (the last ends at 1 exactly). */
+    for (int i = 0; i < n; i++) {
+      double to = i == n - 1 ? 1.0 : from + ws[i];
       json_array_append_new(scatter,
                             json_pack("{s:i, s:f, s:f, s:f, s:o, s:f}", "part", index[x],
-                                      "from", (double)i / n, "to", (double)(i + 1) / n,
-                                      "anisotropy", gs[i], "color", rgb(sh_scale(c, 1.0 / m)),
-                                      "density", m));
+                                      "from", from, "to", to, "anisotropy", gs[i], "color",
+                                      rgb(sh_scale(c, 1.0 / m)), "density", m));
+      from = to;
+    }
     /* The extinction the chosen lobe leaves out (or adds), per other part. */
     for (int y = 0; y < 2; y++) {
       if (y == x || index[y] < 0) continue;
@@ -156,16 +160,21 @@ json_t *se_blender_atmosphere(const sh_scene *scene, const se_frame *f,
     }
     if (!exact) {
       double g1 = se_phase_to_hg(phases[x], &exact);
-      if (n > 1)
+      if (n > 1 && phases[x]->type == SH_PHASE_CORNETTE_SHANKS)
+        se_note(notes,
+                "medium.%s: Cycles has no %s phase; it is a mixture of %d "
+                "Henyey-Greenstein lobes fitted to it, g = %.4g and %.4g of weights %.4g "
+                "and %.4g, one chosen per point.",
+                x ? "mie.phase" : "rayleigh", se_phase_name(phases[x]->type), n, gs[0], gs[1],
+                ws[0], ws[1]);
+      else if (n > 1)
         se_note(notes,
                 "medium.%s: Cycles has no %s phase; it is an equal-weight mixture of %d "
                 "Henyey-Greenstein lobes fitted to it.",
                 x ? "mie.phase" : "rayleigh", se_phase_name(phases[x]->type), n);
       else
-        se_note(notes,
-                "medium.%s: Cycles has no %s phase; it is rendered as one "
-                "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
-                x ? "mie.phase" : "rayleigh", se_phase_name(phases[x]->type), g1);
+        se_note_one_lobe(notes, x ? "medium.mie.phase" : "medium.rayleigh", "Cycles",
+                         phases[x], g1, "");
     }
   }
   if (a->has_mie) {

@@ -1,6 +1,7 @@
 #include "se_cycles_phase.h"
 
 #include "se_export.h"
+#include "se_phase_fit.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -21,8 +22,11 @@ double se_phase_to_hg(const sh_phase *phase, int *exact) {
     return (50.0 / 83.0) * (16.0 / 17.0);
   case SH_PHASE_RAYLEIGH:
     return 0.0;
-  case SH_PHASE_CORNETTE_SHANKS:
-    return fmax(-gmax, fmin(gmax, se_phase_cs_mean_cosine(phase->g)));
+  case SH_PHASE_CORNETTE_SHANKS: {
+    se_hg_mixture m;
+    double g = se_phase_fit_cs(phase->g, 1, &m) ? m.g[0] : se_phase_cs_mean_cosine(phase->g);
+    return fmax(-gmax, fmin(gmax, g));
+  }
   }
   return 0.0;
 }
@@ -51,5 +55,22 @@ int se_phase_to_hg_lobes(const sh_phase *phase, double g[SE_HG_MAX_LOBES], int *
   }
   *exact = 0;
   for (int i = 0; i < n; i++) g[i] = src[i];
+  return n;
+}
+
+int se_phase_to_hg_weighted(const sh_phase *phase, double g[SE_HG_MAX_LOBES],
+                            double w[SE_HG_MAX_LOBES], int *exact) {
+  se_hg_mixture m;
+  if (phase->type == SH_PHASE_CORNETTE_SHANKS && se_phase_fit_cs(phase->g, 2, &m)) {
+    const double gmax = 1.0 - 1e-3;
+    *exact = 0;
+    for (int i = 0; i < m.n; i++) {
+      g[i] = fmax(-gmax, fmin(gmax, m.g[i]));
+      w[i] = m.w[i];
+    }
+    return m.n;
+  }
+  int n = se_phase_to_hg_lobes(phase, g, exact);
+  for (int i = 0; i < n; i++) w[i] = 1.0 / n;
   return n;
 }

@@ -12,8 +12,11 @@
  * - nishita_murky: 33/83 isotropic + 50/83 the lobe 50 x^32 (mean cosine
  *   16/17): g = 800/1411;
  * - rayleigh: symmetric, g = 0 as one lobe; two lobes g = +-0.318085;
- * - cornette_shanks: one lobe of its mean cosine, se_phase_cs_mean_cosine
- *   (g = 0.757 for the format's g = 0.7).
+ * - cornette_shanks: the lobe fitted to it (se_phase_fit_cs with one
+ *   lobe: g = 0.7433 for the format's g = 0.7, 0.8237 for 0.8; the
+ *   energy-weighted fit, which holds the forward peak: its mean cosine
+ *   0.757 and 0.844 were 31% and 47% bright there), or, where one lobe is
+ *   chosen per point, the fitted mixture (se_phase_to_hg_weighted).
  * These are approximations (the notes say so); isotropic and
  * Henyey-Greenstein are exact. */
 #ifndef SE_CYCLES_PHASE_H
@@ -41,6 +44,15 @@ double se_phase_to_hg(const sh_phase *phase, int *exact);
  * (se_phase_to_hg). */
 #define SE_HG_MAX_LOBES 8
 int se_phase_to_hg_lobes(const sh_phase *phase, double g[SE_HG_MAX_LOBES], int *exact);
+
+/* The lobes g[i] with weights w[i] (summing to 1; returns their number)
+ * for a material that chooses one lobe per shading point with probability
+ * w[i] (the atmosphere's, se_blender_atmo.h), where the weights need not
+ * be equal: Cornette-Shanks as its fitted mixture (se_phase_fit_cs, two
+ * lobes: one forward, one weak backward), the others as
+ * se_phase_to_hg_lobes with equal weights. *exact as there. */
+int se_phase_to_hg_weighted(const sh_phase *phase, double g[SE_HG_MAX_LOBES],
+                            double w[SE_HG_MAX_LOBES], int *exact);
 
 #ifdef __cplusplus
 }

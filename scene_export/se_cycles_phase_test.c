@@ -1,11 +1,15 @@
 /* Cycles' phase lobes: at most SE_HG_MAX_LOBES, distinct g (Cycles merges
  * equal ones), exact where the phase is one lobe, and the Rayleigh mixture
- * within its fitted error at every angle; the Cornette-Shanks lobe has
- * the phase's mean cosine (integrated numerically) and stays within its
- * measured error (37% at worst for g = 0.7: docs/scene_export.md). */
+ * within its fitted error at every angle; the Cornette-Shanks lobe is the
+ * one-lobe fit (se_phase_fit.h) and stays within its measured error (37%
+ * at worst for g = 0.7: docs/scene_export.md), the weighted lobes are the
+ * fitted mixture; the mean cosine (the fit's fallback) matches the
+ * phase's, integrated numerically. */
 #include <math.h>
 
 #include "se_cycles_phase.h"
+#include "se_export.h"
+#include "se_phase_fit.h"
 #include "sh_medium.h"
 #include "sh_test.h"
 
@@ -60,9 +64,27 @@ int main(void) {
       double c = -1.0 + (i + 0.5) * dc;
       mc += 2.0 * 3.14159265358979323846 * c * sh_phase_eval(&cs, c) * dc;
     }
+    SH_CHECK(fabs(se_phase_cs_mean_cosine(gc) - mc) < 1e-6);
+    /* Cycles' lobe is the one-lobe fit; where a lobe is chosen per point,
+     * the fitted mixture with its weights. */
+    se_hg_mixture fit1, fit2;
+    SH_CHECK(se_phase_fit_cs(gc, 1, &fit1) && se_phase_fit_cs(gc, 2, &fit2));
     n = se_phase_to_hg_lobes(&cs, g, &exact);
-    SH_CHECK(!exact && n == 1 && fabs(g[0] - mc) < 1e-6);
+    SH_CHECK(!exact && n == 1 && g[0] == fit1.g[0]);
+    double w[SE_HG_MAX_LOBES];
+    n = se_phase_to_hg_weighted(&cs, g, w, &exact);
+    SH_CHECK(!exact && n == fit2.n);
+    double sum = 0.0;
+    for (int i = 0; i < n; i++) {
+      SH_CHECK(g[i] == fit2.g[i] && w[i] == fit2.w[i]);
+      sum += w[i];
+    }
+    SH_CHECK(fabs(sum - 1.0) < 1e-12);
   }
+  /* Other phases: se_phase_to_hg_lobes' lobes, of equal weights. */
+  double w[SE_HG_MAX_LOBES];
+  n = se_phase_to_hg_weighted(&r, g, w, &exact);
+  SH_CHECK(!exact && n == 2 && w[0] == 0.5 && w[1] == 0.5 && g[0] == -g[1]);
   sh_phase cs7 = {SH_PHASE_CORNETTE_SHANKS, 0.7};
   se_phase_to_hg_lobes(&cs7, g, &exact);
   SH_CHECK(max_rel(&cs7, g, 1) < 0.38);

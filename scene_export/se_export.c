@@ -142,3 +142,17 @@ const char *se_phase_name(sh_phase_type type) {
 double se_phase_cs_mean_cosine(double g) {
   return 3.0 * g * (4.0 + g * g) / (5.0 * (2.0 + g * g));
 }
+
+void se_note_one_lobe(se_notes *notes, const char *what, const char *renderer,
+                      const sh_phase *phase, double g, const char *tail) {
+  if (phase->type == SH_PHASE_CORNETTE_SHANKS)
+    se_note(notes,
+            "%s: %s has no %s phase; it is rendered as one Henyey-Greenstein lobe fitted "
+            "to it, g = %.4g%s.",
+            what, renderer, se_phase_name(phase->type), g, tail);
+  else
+    se_note(notes,
+            "%s: %s has no %s phase; it is rendered as one Henyey-Greenstein lobe, "
+            "g = %.4g, its mean cosine%s.",
+            what, renderer, se_phase_name(phase->type), g, tail);
+}

@@ -103,10 +103,17 @@ const char *se_phase_name(sh_phase_type type);
  * integral of cos alpha times the normalised phase over the sphere):
  * 3 g (4 + g^2) / (5 (2 + g^2)), from the integrals of (1 + c^2) c and
  * (1 + c^2) against the Henyey-Greenstein shape. Neither POV-Ray nor
- * Cycles has that phase; both targets render it as the Henyey-Greenstein
- * lobe of this g (approximated: docs/scene_export.md, "Non-uniform
- * media"). */
+ * Cycles has that phase; both targets render it as Henyey-Greenstein lobes
+ * fitted to it (se_phase_fit.h; this g only if the fit's work space cannot
+ * be allocated). */
 double se_phase_cs_mean_cosine(double g);
+
+/* Notes that `renderer` has no phase of the type at `what` and renders it
+ * as one Henyey-Greenstein lobe g: "fitted to it" for Cornette-Shanks,
+ * else "its mean cosine"; `tail` ends the sentence (e.g. " clamped to
+ * Cycles' range"). */
+void se_note_one_lobe(se_notes *notes, const char *what, const char *renderer,
+                      const sh_phase *phase, double g, const char *tail);
 
 /* Appends the notes as comment lines: each line starts with `prefix` (such
  * as "// " or "# "), and the text is sanitised for a comment. */

@@ -25,7 +25,16 @@ typedef struct pov {
   sh_vec3 center;   /* the bounding sphere, in scene units */
   double radius;
   const char *name; /* the output's base name (plain), for the light maps */
-  int split; /* an atmosphere with Mie scattering: two frames (atmosphere()) */
+  /* The image as the sum of frames (single scattering is linear in the
+   * scattering; se_pov.h): an atmosphere with Mie scattering has frame 1
+   * for Rayleigh's light and the surfaces' and one frame per Mie lobe; a
+   * medium whose phase is a weighted mixture of lobes (Cornette-Shanks)
+   * one frame per lobe, the surfaces' light in frame 1. split is
+   * nframes > 1; frames after the first hold scattered light only. */
+  int split, nframes;
+  int nlobes;                          /* the scattering phase's lobes ... */
+  se_phase_pov lobes[SE_POV_MAX_LOBES]; /* (the medium's, or Mie's) */
+  double lobe_w[SE_POV_MAX_LOBES];     /* and their weights */
 } pov;
 
 /* Numbers: 10 significant digits, enough for half-float output. */
@@ -95,11 +104,16 @@ static void header(pov *p, const char *name) {
   free(file);
   if (p->split) {
     se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes frames\n"
-                     "// %s1.exr and %s2.exr (Rayleigh's light and the surfaces, then Mie's),\n"
-                     "// whose sum is the image: `oiiotool %s1.exr %s2.exr --add -o %s.exr`.\n"
+                     "// %s1.exr to %s%d.exr (%s), whose sum is the image:\n// `oiiotool",
+                  name, name, name, p->nframes,
+                  p->scene->medium.type == SH_MEDIUM_ATMOSPHERE
+                      ? "Rayleigh's light and the surfaces', then Mie's, a frame per lobe"
+                      : "a frame per lobe of the phase, the surfaces' light in the first");
+    for (int f = 1; f <= p->nframes; f++) se_buf_printf(b, " %s%d.exr%s", name, f, f > 1 ? " --add" : "");
+    se_buf_printf(b, " -o %s.exr`.\n"
                      "// Linear radiance as half-float OpenEXR, one ray through each pixel "
                      "centre.\n",
-                  name, name, name, name, name, name);
+                  name);
   } else {
     se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
                   name, name);
@@ -168,10 +182,11 @@ static void globals(pov *p) {
                 "  adc_bailout 1e-10\n  ambient_light rgb <1, 1, 1>\n}\n\n",
                 trace_levels(p));
   if (p->split)
-    se_buf_puts(b, "// Frame 2 holds Mie's light only: no background, no sun's disk, and no\n"
-                   "// light reflected by surfaces (SE_Lit 0; mirrors and transmission stay).\n"
-                   "#declare SE_Lit = (frame_number = 2 ? 0 : 1);\n"
-                   "#if (frame_number != 2)\n");
+    se_buf_puts(b, "// Frames after the first hold scattered light only: no background, no\n"
+                   "// sun's disk, and no light reflected by surfaces (SE_Lit 0; mirrors and\n"
+                   "// transmission stay).\n"
+                   "#declare SE_Lit = (frame_number <= 1 ? 1 : 0);\n"
+                   "#if (frame_number <= 1)\n");
   se_buf_puts(b, "background { ");
   colour(b, s->background);
   se_buf_puts(b, " }\n\n");
@@ -527,15 +542,44 @@ static void medium_density(pov *p, const sh_vec3 lo) {
   se_buf_puts(b, ")) }\n        density_map { [0 rgb 0] [1 rgb 1] }\n      }\n");
 }
 
+/* The note for a phase POV-Ray only approximates (p->lobes), `what` the
+ * scene's key. */
+static void lobes_note(pov *p, const char *what, const sh_phase *phase) {
+  if (p->lobes[0].exact) return;
+  if (p->nlobes == 1)
+    se_note_one_lobe(p->notes, what, "POV-Ray", phase, p->lobes[0].g, "");
+  else
+    se_note(p->notes,
+            "%s: POV-Ray has no %s phase; it is rendered as %d "
+            "Henyey-Greenstein lobes fitted to it, g = %.4g and %.4g of weights %.4g and "
+            "%.4g, one frame each.",
+            what, se_phase_name(phase->type), p->nlobes, p->lobes[0].g, p->lobes[1].g,
+            p->lobe_w[0], p->lobe_w[1]);
+}
+
+/* A scattering block of the lobe pp of weight w for scattering `ss` per
+ * unit: colour w ss / k with `extinction` k / w (k = 4 pi times the mean of
+ * POV-Ray's k), so that the extinction is the whole ss whatever the lobe's
+ * share of the scattering. `indent` before each line. */
+static void scattering(pov *p, const se_phase_pov *pp, double w, sh_vec3 ss,
+                       const char *indent) {
+  se_buf *b = p->b;
+  double k = 4.0 * SH_PI * pp->mean;
+  se_buf_printf(b, "%sscattering {\n%s  %d, ", indent, indent, pp->type);
+  colour(b, sh_scale(ss, w / k));
+  se_buf_printf(b, "\n%s  extinction ", indent);
+  num(b, k / w);
+  if (pp->type == 5) {
+    se_buf_printf(b, "\n%s  eccentricity ", indent);
+    num(b, pp->g);
+  }
+  se_buf_printf(b, "\n%s}\n", indent);
+}
+
 static void medium(pov *p) {
   const sh_medium *m = &p->scene->medium;
   se_buf *b = p->b;
-  se_phase_pov pp = se_phase_to_pov(&m->phase);
-  if (!pp.exact)
-    se_note(p->notes,
-            "medium: POV-Ray has no %s phase; it is rendered as one "
-            "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
-            se_phase_name(m->phase.type), pp.g);
+  lobes_note(p, "medium", &m->phase);
   /* POV-Ray 3.7 holds at most 255 intervals (more: "internal nesting
    * limit"); final quality takes 4 samples in each (with jitter 0, evenly
    * spread: a finer midpoint rule). */
@@ -551,35 +595,37 @@ static void medium(pov *p) {
                  "// midpoint rule (with exact transmittance in a homogeneous medium; method 3\n"
                  "// is biased).\n");
   se_buf_printf(b, "// Phase: %s; POV-Ray's k has sphere mean %.9g, so the scattering colour\n"
-                   "// is sigma_s / (4 pi mean) and `extinction` 4 pi mean.\n",
-                pp.comment, pp.mean);
+                   "// is w sigma_s / (4 pi mean) and `extinction` 4 pi mean / w, w the lobe's\n"
+                   "// weight.\n",
+                p->lobes[0].comment, p->lobes[0].mean);
+  if (p->split)
+    se_buf_puts(b, "// POV-Ray phases all media in an interior with the plain mean of their\n"
+                   "// phases, so each lobe has a frame of its own (media.cpp,\n"
+                   "// ComputeMediaScatteringAttenuation: k /= medias.size()).\n");
   se_buf_puts(b, "box {\n  ");
   point(p, sh_v3(lo.x, lo.y, hi.z));
   se_buf_puts(b, ", ");
   point(p, sh_v3(hi.x, hi.y, lo.z));
   se_buf_puts(b, "\n");
   helper_texture(b, "rgbt <1, 1, 1, 1>", 0);
-  se_buf_printf(b, "  interior {\n    media {\n      method 2\n      intervals %d\n"
-                   "      samples %d, %d\n      jitter 0\n", intervals, samples, samples);
-  if (!sh_is_black(ss)) {
-    double k = 4.0 * SH_PI * pp.mean;
-    se_buf_printf(b, "      scattering {\n        %d, ", pp.type);
-    colour(b, sh_scale(ss, 1.0 / k));
-    se_buf_puts(b, "\n        extinction ");
-    num(b, k);
-    if (pp.type == 5) {
-      se_buf_puts(b, "\n        eccentricity ");
-      num(b, pp.g);
+  se_buf_puts(b, "  interior {\n");
+  for (int i = 0; i < (p->split ? p->nlobes : 1); i++) {
+    if (p->split)
+      se_buf_printf(b, "  #if (frame_number %s %d) // lobe %d: g %.4g, weight %.4g\n",
+                    i ? "=" : "<=", i + 1, i + 1, p->lobes[i].g, p->lobe_w[i]);
+    se_buf_printf(b, "    media {\n      method 2\n      intervals %d\n"
+                     "      samples %d, %d\n      jitter 0\n", intervals, samples, samples);
+    if (!sh_is_black(ss)) scattering(p, &p->lobes[i], p->lobe_w[i], ss, "      ");
+    if (!sh_is_black(sa)) {
+      se_buf_puts(b, "      absorption ");
+      colour(b, sa);
+      se_buf_puts(b, "\n");
     }
-    se_buf_puts(b, "\n      }\n");
+    medium_density(p, lo);
+    se_buf_puts(b, "    }\n");
+    if (p->split) se_buf_puts(b, "  #end\n");
   }
-  if (!sh_is_black(sa)) {
-    se_buf_puts(b, "      absorption ");
-    colour(b, sa);
-    se_buf_puts(b, "\n");
-  }
-  medium_density(p, lo);
-  se_buf_puts(b, "    }\n  }\n}\n\n");
+  se_buf_puts(b, "  }\n}\n\n");
 }
 
 /* The atmosphere (docs/scene_export.md, "Non-uniform media"): the ground
@@ -591,10 +637,12 @@ static void medium(pov *p) {
  * densities, so no set of media in one interior scatters with Rayleigh's
  * and Mie's phases weighted by their sigma_s at each point. Single
  * scattering is linear in the scattering, though: with Mie (p->split) the
- * export renders two frames, each with the whole extinction and one
- * part's scattering, every medium of that frame carrying that part's
- * phase type (so the mean of the k is that phase exactly): frame 1
- * Rayleigh's (and the surfaces'), frame 2 Mie's. Their sum is the image. */
+ * export renders a frame per part and lobe, each with the whole extinction
+ * and one part's scattering, every medium of that frame carrying that
+ * part's phase type (so the mean of the k is that phase exactly): frame 1
+ * Rayleigh's (and the surfaces'), frames 2 and on Mie's lobes (one for a
+ * POV-Ray phase type, se_phase_to_pov_lobes' fitted lobes for
+ * Cornette-Shanks). Their sum is the image. */
 /* r, the distance to the centre in POV-Ray units, as a function text. */
 static void atmo_radius(pov *p, const sh_atmosphere *a) {
   sh_vec3 c = se_frame_point(&p->frame, a->center);
@@ -624,24 +672,17 @@ static void atmo_exp_density(pov *p, const sh_atmosphere *a, double H) {
   se_buf_puts(p->b, ")) }\n          density_map { [0 rgb 0] [1 rgb 1] } }\n");
 }
 
-/* One media block: its sampling, scattering of a POV-Ray type (colour
- * `ss` per unit, already divided by 4 pi times the mean k), absorption, and
- * the density, if any (kind 0: none, 1: exp with H, 2: the ozone's tent). */
-static void atmo_media(pov *p, const sh_atmosphere *a, const se_phase_pov *pp,
-                       double k, sh_vec3 ss, sh_vec3 sa, int kind, double H) {
+/* One media block: its sampling, scattering `ss` per unit with the lobe pp
+ * of weight w (scattering()), absorption, and the density, if any (kind
+ * 0: none, 1: exp with H, 2: the ozone's tent). */
+static void atmo_media(pov *p, const sh_atmosphere *a, const se_phase_pov *pp, double w,
+                       sh_vec3 ss, sh_vec3 sa, int kind, double H) {
   se_buf *b = p->b;
   int final = p->opt->quality == SE_QUALITY_FINAL;
   se_buf_printf(b, "    media {\n      method 2\n      intervals %d\n      samples %d, %d\n"
-                   "      jitter 0\n      scattering {\n        %d, ",
-                final ? 255 : 200, final ? 4 : 1, final ? 4 : 1, pp->type);
-  colour(b, ss);
-  se_buf_puts(b, "\n        extinction ");
-  num(b, k);
-  if (pp->type == 5) {
-    se_buf_puts(b, "\n        eccentricity ");
-    num(b, pp->g);
-  }
-  se_buf_puts(b, "\n      }\n");
+                   "      jitter 0\n",
+                final ? 255 : 200, final ? 4 : 1, final ? 4 : 1);
+  scattering(p, pp, w, ss, "      ");
   if (!sh_is_black(sa)) {
     se_buf_puts(b, "      absorption ");
     colour(b, sa);
@@ -664,14 +705,10 @@ static void atmosphere(pov *p) {
   const sh_atmosphere *a = &p->scene->medium.atmo;
   se_buf *b = p->b;
   sh_phase rayleigh = {SH_PHASE_RAYLEIGH, 0.0};
-  se_phase_pov pr = se_phase_to_pov(&rayleigh), pm = se_phase_to_pov(&a->mie_phase);
-  if (a->has_mie && !pm.exact && p->split)
-    se_note(p->notes,
-            "medium.mie.phase: POV-Ray has no %s phase; it is rendered as one "
-            "Henyey-Greenstein lobe, g = %.4g, its mean cosine.",
-            se_phase_name(a->mie_phase.type), pm.g);
+  se_phase_pov pr = se_phase_to_pov(&rayleigh);
+  if (p->split) lobes_note(p, "medium.mie.phase", &a->mie_phase);
   se_buf_puts(b, "// The atmosphere: the ground, an opaque Lambert sphere");
-  se_buf_puts(b, p->split ? " (black in frame 2).\nsphere {\n  " : ".\nsphere {\n  ");
+  se_buf_puts(b, p->split ? " (black after frame 1).\nsphere {\n  " : ".\nsphere {\n  ");
   point(p, a->center);
   se_buf_puts(b, ", ");
   num(b, se_frame_length(&p->frame, a->ground_radius));
@@ -679,9 +716,9 @@ static void atmosphere(pov *p) {
   vector(b, p->split ? "rgb SE_Lit * " : "rgb ", sh_scale(a->ground_albedo, SH_INV_PI));
   se_buf_puts(b, " }\n  finish { ambient 0 diffuse 1 emission 0 }\n}\n\n");
   se_buf_puts(b, "// The air: the top sphere's interior, media of one phase type; scattering\n"
-                 "// colours sigma_s / (4 pi S) with `extinction` 4 pi S, S the mean of that\n"
-                 "// type's k over the sphere, so that the extinction is exact and the\n"
-                 "// in-scattering is sigma_s times the phase.\n");
+                 "// colours w sigma_s / (4 pi S) with `extinction` 4 pi S / w, S the mean of\n"
+                 "// that type's k over the sphere and w the lobe's weight, so that the\n"
+                 "// extinction is exact and the in-scattering is w sigma_s times the lobe.\n");
   se_buf_puts(b, "sphere {\n  ");
   point(p, a->center);
   se_buf_puts(b, ", ");
@@ -692,34 +729,38 @@ static void atmosphere(pov *p) {
   const sh_vec3 zero = sh_v3s(0.0);
   const se_frame *f = &p->frame;
   sh_vec3 mie_t = sh_add(a->mie_sigma_s, a->mie_sigma_a);
-  for (int frame = p->split ? 2 : 1; frame >= 1; frame--) {
-    /* Frame 2: Mie's scattering; frame 1 (or the only one): Rayleigh's.
-     * The other part's extinction is an absorbing medium of the same type. */
-    const se_phase_pov *pp = frame == 2 ? &pm : &pr;
-    double k = 4.0 * SH_PI * pp->mean;
-    if (p->split)
-      se_buf_puts(b, frame == 2 ? "  #if (frame_number = 2) // Mie's light\n"
-                                : "  #else // Rayleigh's light\n");
-    if (frame == 2) {
-      atmo_media(p, a, pp, k, se_frame_per_length(f, sh_scale(a->mie_sigma_s, 1.0 / k)),
-                 se_frame_per_length(f, a->mie_sigma_a), 1, a->mie_H);
-      atmo_media(p, a, pp, k, zero, se_frame_per_length(f, a->rayleigh_sigma_s), 1,
-                 a->rayleigh_H);
-    } else {
-      atmo_media(p, a, pp, k, se_frame_per_length(f, sh_scale(a->rayleigh_sigma_s, 1.0 / k)),
-                 zero, 1, a->rayleigh_H);
-      if (a->has_mie)
-        atmo_media(p, a, pp, k, zero,
-                   se_frame_per_length(f, p->split ? mie_t : a->mie_sigma_a), 1, a->mie_H);
-    }
+  for (int frame = 2; frame <= p->nframes; frame++) {
+    /* Mie's scattering with lobe frame - 2; Rayleigh's extinction and the
+     * ozone as absorbing media of the same lobe. */
+    const se_phase_pov *pp = &p->lobes[frame - 2];
+    double w = p->lobe_w[frame - 2];
+    se_buf_printf(b, "  #if (frame_number = %d) // Mie's light, lobe %d: g %.4g, weight %.4g\n",
+                  frame, frame - 1, pp->g, w);
+    atmo_media(p, a, pp, w, se_frame_per_length(f, a->mie_sigma_s),
+               se_frame_per_length(f, a->mie_sigma_a), 1, a->mie_H);
+    atmo_media(p, a, pp, w, zero, se_frame_per_length(f, a->rayleigh_sigma_s), 1,
+               a->rayleigh_H);
     if (a->has_ozone)
-      atmo_media(p, a, pp, k, zero, se_frame_per_length(f, a->ozone_sigma_a), 2, 0.0);
+      atmo_media(p, a, pp, w, zero, se_frame_per_length(f, a->ozone_sigma_a), 2, 0.0);
+    se_buf_puts(b, "  #end\n");
   }
+  /* Frame 1 (or the only one): Rayleigh's scattering, Mie's extinction
+   * (or, without Mie scattering, its absorption) and the ozone. Frame 0,
+   * POV-Ray's frame_number without an animation (the .pov rendered
+   * without its .ini), is frame 1 too. */
+  if (p->split) se_buf_puts(b, "  #if (frame_number <= 1) // Rayleigh's light\n");
+  atmo_media(p, a, &pr, 1.0, se_frame_per_length(f, a->rayleigh_sigma_s), zero, 1,
+             a->rayleigh_H);
+  if (a->has_mie)
+    atmo_media(p, a, &pr, 1.0, zero, se_frame_per_length(f, p->split ? mie_t : a->mie_sigma_a),
+               1, a->mie_H);
+  if (a->has_ozone)
+    atmo_media(p, a, &pr, 1.0, zero, se_frame_per_length(f, a->ozone_sigma_a), 2, 0.0);
   if (p->split) se_buf_puts(b, "  #end\n");
   se_buf_puts(b, "  }\n}\n\n");
 }
 
-static void ini(se_buf *b, const char *name, const sh_scene *s, int split) {
+static void ini(se_buf *b, const char *name, const sh_scene *s, int nframes) {
   se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
   se_buf_printf(b, "%s.ini` in this directory.\n", name);
   se_buf_printf(b, "Input_File_Name=%s.pov\n", name);
@@ -730,10 +771,10 @@ static void ini(se_buf *b, const char *name, const sh_scene *s, int split) {
   se_buf_puts(b, "; One ray through each pixel centre.\n");
   se_buf_puts(b, "Antialias=Off\nJitter=Off\nQuality=9\n");
   se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
-  if (split)
-    se_buf_printf(b, "; The atmosphere in two frames, %s1.exr and %s2.exr: the image is "
-                     "their sum.\nInitial_Frame=1\nFinal_Frame=2\n",
-                  name, name);
+  if (nframes > 1)
+    se_buf_printf(b, "; %d frames, %s1.exr to %s%d.exr: the image is their sum.\n"
+                     "Initial_Frame=1\nFinal_Frame=%d\n",
+                  nframes, name, name, nframes, nframes);
 }
 
 /* POV-Ray's frame (se_scale.h), and the content sphere the tolerances
@@ -783,8 +824,15 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   p.name = name;
   choose_frame(&p);
   const sh_medium *med = &scene->medium;
-  p.split = med->present && med->type == SH_MEDIUM_ATMOSPHERE && med->atmo.has_mie &&
-            !sh_is_black(med->atmo.mie_sigma_s);
+  /* The scattering phase's lobes and the frames they need. */
+  int atmo = med->present && med->type == SH_MEDIUM_ATMOSPHERE;
+  p.nlobes = se_phase_to_pov_lobes(atmo ? &med->atmo.mie_phase : &med->phase, p.lobes,
+                                   p.lobe_w);
+  if (atmo)
+    p.nframes = med->atmo.has_mie && !sh_is_black(med->atmo.mie_sigma_s) ? 1 + p.nlobes : 1;
+  else
+    p.nframes = med->present && !sh_is_black(med->sigma_s) ? p.nlobes : 1;
+  p.split = p.nframes > 1;
   p.pov_radius = se_frame_length(&p.frame, p.radius);
   out->has_frame = 1;
   out->frame = p.frame;
@@ -836,6 +884,6 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   if (body.data) se_buf_puts(povb, body.data);
   povb->failed |= body.failed;
   se_buf_free(&body);
-  ini(inib, name, scene, p.split);
+  ini(inib, name, scene, p.nframes);
   return SH_OK;
 }

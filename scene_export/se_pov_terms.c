@@ -1,6 +1,7 @@
 #include "se_pov_terms.h"
 
 #include "se_export.h"
+#include "se_phase_fit.h"
 
 void se_pov_string(se_buf *b, const char *in) {
   se_buf_puts(b, "\"");
@@ -46,7 +47,8 @@ se_phase_pov se_phase_to_pov(const sh_phase *phase) {
     break;
   case SH_PHASE_CORNETTE_SHANKS:
     /* POV-Ray has no Cornette-Shanks phase: the Henyey-Greenstein lobe of
-     * its mean cosine (se_export.h), approximated. */
+     * its mean cosine (se_export.h), approximated; se_phase_to_pov_lobes
+     * has the fitted lobes. */
     p.type = 5;
     p.g = se_phase_cs_mean_cosine(phase->g);
     p.comment = "Cornette-Shanks approximated by the Henyey-Greenstein lobe of its "
@@ -57,3 +59,21 @@ se_phase_pov se_phase_to_pov(const sh_phase *phase) {
   return p;
 }
 
+
+int se_phase_to_pov_lobes(const sh_phase *phase, se_phase_pov lobes[SE_POV_MAX_LOBES],
+                          double w[SE_POV_MAX_LOBES]) {
+  lobes[0] = se_phase_to_pov(phase);
+  w[0] = 1.0;
+  se_hg_mixture m;
+  if (phase->type != SH_PHASE_CORNETTE_SHANKS ||
+      !se_phase_fit_cs_lobes(phase->g, SE_POV_MAX_LOBES, SE_POV_MIN_LOBE_WEIGHT, &m))
+    return 1;
+  for (int i = 0; i < m.n; i++) {
+    lobes[i] = lobes[0];
+    lobes[i].g = m.g[i];
+    lobes[i].comment = "Cornette-Shanks approximated by a Henyey-Greenstein lobe fitted to it "
+                       "(se_phase_fit.h), POV-Ray type 5";
+    w[i] = m.w[i];
+  }
+  return m.n;
+}

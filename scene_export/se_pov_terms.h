@@ -6,8 +6,12 @@
  * (Henyey-Greenstein), and for types 2, 3, 4 (Mie hazy, Mie murky,
  * Rayleigh) a shape whose mean over the sphere is not 1. Knowing the mean
  * makes the mapping exact (se_pov.h). The Cornette-Shanks phase has no
- * POV-Ray type: it becomes the Henyey-Greenstein lobe of its mean cosine,
- * marked inexact. */
+ * POV-Ray type: it becomes a weighted mixture of Henyey-Greenstein lobes
+ * fitted to it (se_phase_fit.h), marked inexact. POV-Ray phases several
+ * media in one interior with the plain mean of their phases, whatever
+ * their scattering (media.cpp, ComputeMediaScatteringAttenuation: k /=
+ * medias.size()), so a weighted mixture needs one frame per lobe (the
+ * image is the frames' sum, se_pov.h). */
 #ifndef SE_POV_TERMS_H
 #define SE_POV_TERMS_H
 
@@ -33,6 +37,18 @@ typedef struct se_phase_pov {
 } se_phase_pov;
 
 se_phase_pov se_phase_to_pov(const sh_phase *phase);
+
+/* The phase as n POV-Ray lobes of weights w[i] (summing to 1; returns n,
+ * at most SE_POV_MAX_LOBES): one lobe of weight 1 (se_phase_to_pov) but
+ * for Cornette-Shanks, whose fit (se_phase_fit_cs_lobes) keeps the lobes
+ * of at least SE_POV_MIN_LOBE_WEIGHT, each costing a frame: a backward
+ * lobe of 0.3% (g 0.7) is not worth rendering the image again, one of
+ * 2.7% (g 0.5) is. If the fit's work space cannot be allocated, the lobe
+ * of the mean cosine. */
+#define SE_POV_MAX_LOBES 2
+#define SE_POV_MIN_LOBE_WEIGHT 0.01
+int se_phase_to_pov_lobes(const sh_phase *phase, se_phase_pov lobes[SE_POV_MAX_LOBES],
+                          double w[SE_POV_MAX_LOBES]);
 
 #ifdef __cplusplus
 }

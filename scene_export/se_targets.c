@@ -9,9 +9,10 @@ const se_target se_targets[] = {
     {"pov", "pov", se_pov_build,
      "OUT = DIR/NAME.pov: writes NAME.pov, NAME.ini and the light maps "
      "NAME_map<i>.exr; `povray NAME.ini` in DIR renders DIR/NAME.exr (an "
-     "atmosphere with Mie scattering: two frames NAME1.exr and NAME2.exr, "
-     "whose sum is the image: oiiotool NAME1.exr NAME2.exr --add -o "
-     "NAME.exr)"},
+     "atmosphere with Mie scattering, or a Cornette-Shanks phase rendered as "
+     "two lobes: frames NAME1.exr, NAME2.exr, ..., whose sum is the image: "
+     "oiiotool NAME1.exr NAME2.exr --add -o NAME.exr, the .pov's header "
+     "names them all)"},
     {"blender", "py", se_blender_build,
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
      "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "

@@ -397,16 +397,21 @@ def _time_sum(text, pattern):
 
 def pov_frames(work, name="scene", log=None):
     """The image POV-Ray's render of NAME.ini in `work` stands for: NAME.exr,
-    or, for an atmosphere with Mie scattering (scene_export renders it in
-    two frames, docs/scene_export.md), the sum of NAME1.exr and NAME2.exr
-    written to NAME.exr by oiiotool (OpenImageIO's, float sum of the
-    half-float frames). None if POV-Ray wrote neither."""
+    or, for a scene scene_export renders in frames (an atmosphere with Mie
+    scattering, a phase exported as several lobes: docs/scene_export.md),
+    the sum of NAME1.exr, NAME2.exr, ... written to NAME.exr by oiiotool
+    (OpenImageIO's, float sum of the half-float frames). None if POV-Ray
+    wrote neither."""
     work = Path(work)
     image = work / (name + ".exr")
-    frames = [work / ("%s%d.exr" % (name, k)) for k in (1, 2)]
-    if all(f.exists() for f in frames):
-        command(["oiiotool", frames[0], frames[1], "--add", "-d", "float", "-o", image],
-                cwd=work, log=log)
+    frames = []
+    while (work / ("%s%d.exr" % (name, len(frames) + 1))).exists():
+        frames.append(work / ("%s%d.exr" % (name, len(frames) + 1)))
+    if len(frames) >= 2:
+        cmd = ["oiiotool", frames[0]]
+        for f in frames[1:]:
+            cmd += [f, "--add"]
+        command(cmd + ["-d", "float", "-o", image], cwd=work, log=log)
     return image if image.exists() else None
 
 
@@ -483,7 +488,7 @@ class PovRay(Adapter):
         tool = _time_sum(out, r"(?:Parse|Bounding|Photon|Radiosity|Trace) Time:.*?\(([\d.]+) seconds\)")
         image = pov_frames(work, "scene", log)
         if image is None:
-            raise RunFailed("povray wrote no scene.exr (nor scene1.exr and scene2.exr)")
+            raise RunFailed("povray wrote no scene.exr (nor frames scene1.exr, scene2.exr, ...)")
         return {"image": image, "wall_seconds": wall, "tool_seconds": tool}
 
 
