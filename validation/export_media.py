@@ -18,8 +18,10 @@ For each scene (scene_export/testdata, small): the reference (lmm_tracer
   four times longer (the data's step_rate times 4) and, for an atmosphere,
   four times shorter;
 - phase: the largest and RMS relative error over cos of the
-  Henyey-Greenstein lobe that both targets use for the Cornette-Shanks phase
-  (se_phase_cs_mean_cosine), for a few g.
+  Henyey-Greenstein lobe of the Cornette-Shanks phase's mean cosine
+  (se_phase_cs_mean_cosine), which both targets used before the fitted
+  lobes (se_phase_fit.h; scene_export/se_phase_fit_test prints the fits'
+  errors), for a few g.
 Every image is compared with the reference by shafts_compare (mean_rel over
 the lit pixels and the luminance ratio, the project's one definition of
 error). Renders run under the caller's priority; nothing is cached.
