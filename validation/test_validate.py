@@ -372,20 +372,36 @@ class SweepTest(unittest.TestCase):
         self.assertTrue({"medium:atmosphere", "phase:rayleigh",
                          "phase:cornette_shanks"} <= feats)
         self.assertEqual(verdicts.causes("povray", feats),
-                         ["Cornette-Shanks phase exported as one HG lobe"])
-        self.assertIn("Cornette-Shanks phase exported as one HG lobe",
+                         ["Cornette-Shanks phase exported as HG lobes fitted to it"])
+        self.assertIn("Cornette-Shanks phase exported as HG lobes fitted to it",
                       verdicts.causes("cycles", feats))
         fog = verdicts.features(json.loads((ROOT / "scenes/valley_fog.json").read_text()))
         self.assertIn("medium:height_fog", fog)
         self.assertEqual(verdicts.causes("povray", fog), [])
-        # The add-on reads height fog and the atmosphere exactly (their
-        # phases too); only a homogeneous medium's phase goes through
-        # Cycles' lobes.
+        # The add-on reads height fog, the atmosphere and a homogeneous
+        # medium's phase exactly.
         self.assertEqual(verdicts.causes("addon_tracer", feats), [])
         self.assertEqual(verdicts.causes("addon_tracer", fog), [])
         box = {"medium": {"phase": {"type": "nishita_hazy"}}}
-        self.assertEqual(verdicts.causes("addon_tracer", verdicts.features(box)),
-                         ["Nishita hazy phase exported as one HG lobe, g 0.4"])
+        self.assertEqual(verdicts.causes("addon_tracer", verdicts.features(box)), [])
+
+    def test_pages_only_judges_again(self):
+        # --pages-only gives an old run today's causes: a POV-Ray series on
+        # sky_sunset whose stored note is stale gets the note CAUSES has now.
+        from . import validate
+        def run(n, e):
+            return {"renderer": "povray", "params": {"intervals": n, "samples": 1},
+                    "metrics": {"rel_rms": e}}
+        entry = {"name": "sky_sunset", "source": "scenes/sky_sunset.json",
+                 "runs": [run(25, 0.06), run(50, 0.06)],
+                 "verdicts": {"povray": {"kind": "bias", "bias": 0.06, "note": "stale"}}}
+        gone = {"name": "gone", "source": "scenes/no_such_scene.json", "runs": [],
+                "verdicts": {"povray": {"note": "kept"}}}
+        results = {"reference_spp": 1024, "scenes": [entry, gone]}
+        self.assertEqual(validate.reclassify(results, ROOT), 1)
+        self.assertEqual(entry["verdicts"]["povray"]["note"],
+                         "Cornette-Shanks phase exported as HG lobes fitted to it")
+        self.assertEqual(gone["verdicts"]["povray"]["note"], "kept")
 
     def test_command_line_in_summary(self):
         from . import validate

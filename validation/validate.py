@@ -49,7 +49,7 @@ from .metrics import (CompareFailed, compare, fmt_percent, fmt_seconds, mask_ima
 from .runs import LocalExecutor, RunCache, plan_run
 from .scenes import find_scenes, light_mask, mode_scale, prepare_file, write_atomic
 from .svgplot import speed_error_svg
-from .twins import prepare_twin
+from .twins import make_twin, prepare_twin
 
 HERE = Path(__file__).resolve().parent
 
@@ -387,6 +387,34 @@ def parse_args(argv):
     return args
 
 
+def reclassify(results, root):
+    """Gives the scenes of `results` (a results.json's dict) their verdicts
+    again from their runs and today's causes (verdicts.CAUSES), so that
+    --pages-only says what is known now of a run made before; a scene whose
+    source file is gone keeps its verdicts. Returns how many scenes were
+    judged again (a twin with its scene)."""
+    entries = {e.get("name"): e for e in results.get("scenes", [])}
+    done = 0
+    for entry in results.get("scenes", []):
+        if entry.get("twin_of") or entry.get("error") or not entry.get("source"):
+            continue
+        source = Path(entry["source"])
+        try:
+            data = json.loads((source if source.is_absolute() else root / source).read_bytes())
+        except (OSError, ValueError):
+            continue
+        twin = entries.get((entry.get("twin") or {}).get("name"))
+        made = make_twin(source.stem, data) if twin is not None else None
+        if made is not None:
+            twin["verdicts"] = verdicts.classify(twin, made[1],
+                                                 ref_spp=results.get("reference_spp"))
+            done += 1
+        entry["verdicts"] = verdicts.classify(entry, data, twin=twin if made else None,
+                                              ref_spp=results.get("reference_spp"))
+        done += 1
+    return done
+
+
 def main(argv=None):
     args = parse_args(argv)
     started = time.time()
@@ -397,9 +425,11 @@ def main(argv=None):
         except (OSError, ValueError) as e:
             print("validate: cannot read %s/results.json: %s" % (args.report, e), file=sys.stderr)
             return 2
+        reclassified = reclassify(results, HERE.parent)
         report.write_html(results, args.report)
         write_atomic(Path(args.report) / "summary.md", report.summary_markdown(results))
-        say("rewrote %s/index.html and summary.md" % args.report)
+        say("rewrote %s/index.html and summary.md (verdicts of %d scenes from today's "
+            "causes)" % (args.report, reclassified))
         return 0
     root = HERE.parent
     # Absolute: the renderers run in their own work directories.

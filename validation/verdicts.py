@@ -70,9 +70,7 @@ SERIES = {
 
 def features(data):
     """The features of a scene (its dict) that CAUSES are keyed by: medium,
-    medium:TYPE, phase:TYPE (an atmosphere's Rayleigh and Mie phases),
-    homogeneous_phase:TYPE (the phase of a homogeneous medium, the only
-    one the add-on reads from Cycles' node graph), phong, reflect,
+    medium:TYPE, phase:TYPE (an atmosphere's Rayleigh and Mie phases), phong, reflect,
     transmit, shadows, several_lights, several_lights_in_medium, light_map,
     light_in_view."""
     out = set()
@@ -87,10 +85,7 @@ def features(data):
             out.add("phase:%s" % ((medium.get("mie") or {}).get("phase") or {}).get(
                 "type", "isotropic"))
         else:
-            phase = (medium.get("phase") or {}).get("type", "isotropic")
-            out.add("phase:%s" % phase)
-            if kind == "homogeneous":
-                out.add("homogeneous_phase:%s" % phase)
+            out.add("phase:%s" % (medium.get("phase") or {}).get("type", "isotropic"))
     materials = [m for m in (data.get("materials") or {}).values() if isinstance(m, dict)]
     if any(has_phong(m) for m in materials):
         out.add("phong")
@@ -122,23 +117,16 @@ CAUSES = [
     # The add-on reads height fog and the atmosphere exactly from the
     # volume material's Shafts Medium properties, which scene_export's
     # Blender writer sets (docs/blender.md, "Height fog and the
-    # atmosphere"; before, its import took the density graphs' Density
-    # inputs as constants: black on valley_fog, 70% and 54% on the
-    # atmosphere at 40x30). At 40x30 since: the sweep 1.2%, 0.37%, 0.18%
-    # on valley_fog, sky_sunset, earth_from_space, the tracer at 16 spp
-    # its noise (2.3%, 2.8%, 1.6%). Only a homogeneous medium's phase comes
-    # through Cycles' node graph (its HG lobes) for the add-on.
+    # atmosphere"), and a homogeneous medium's phase from the material's
+    # shafts_phase record while the node graph holds the writer's lobes
+    # (7c33a3a: Nishita hazy, murky and Rayleigh round trip at 0.0001 mean
+    # relative, from 0.17, 0.34 and 0.22; convert.roundtrip), so the
+    # add-on's engines have no phase cause left.
     (("cycles", "eevee"), "phase:nishita_hazy",
      "Nishita hazy phase exported as one HG lobe, g 0.4"),
     (("cycles", "eevee"), "phase:nishita_murky",
      "Nishita murky phase exported as one HG lobe, g 0.567"),
     (("cycles", "eevee"), "phase:rayleigh",
-     "Rayleigh phase exported as two HG lobes"),
-    (("addon_sweep", "addon_tracer"), "homogeneous_phase:nishita_hazy",
-     "Nishita hazy phase exported as one HG lobe, g 0.4"),
-    (("addon_sweep", "addon_tracer"), "homogeneous_phase:nishita_murky",
-     "Nishita murky phase exported as one HG lobe, g 0.567"),
-    (("addon_sweep", "addon_tracer"), "homogeneous_phase:rayleigh",
      "Rayleigh phase exported as two HG lobes"),
     (("cycles", "eevee", "addon_sweep", "addon_tracer"), "phong",
      "Phong highlights exported as Glossy"),
@@ -153,25 +141,20 @@ CAUSES = [
      "reflecting and transmitting materials drawn opaque"),
     (("gl_shafts", "addon_sweep"), "shadows", "shadow-map edges"),
     (("povray",), "transmit", "total internal reflection in the glass", 0.001),
-    # The exporter's POV-Ray atmosphere (docs/scene_export.md, "Non-uniform
-    # media"): since b260569 two frames, Rayleigh's and Mie's scattering
-    # apart, summed (POV-Ray scatters with the plain mean of its media's
-    # phases), so the mixture is exact; Cornette-Shanks stays one HG lobe:
-    # validation.peers 1.63% mean relative, ratio 1.024 on sky_sunset at
-    # 48x36 (13.1%, 1.254 with Mie's weight fixed before).
-    (("povray",), "phase:cornette_shanks", "Cornette-Shanks phase exported as one HG lobe"),
-    # Cycles' atmosphere (b260569): the sky 5-10% dark in every channel,
-    # with Rayleigh alone (ratio 0.938) and with Mie an exact HG lobe
-    # (0.893) too; with grey coefficients 1.016 (c09a4fe), so likely
-    # Cycles 3.4 choosing the colour channel of its distance sampling once
-    # per path while the extinction differs per channel (docs/scene_export.md).
-    (("cycles",), "medium:atmosphere",
-     "the sky 5-10% dark in Cycles' atmosphere (likely its one colour channel of "
-     "distance sampling per path; docs/scene_export.md)"),
-    (("cycles", "eevee"), "phase:cornette_shanks",
-     "Cornette-Shanks phase exported as one HG lobe"),
-    (("addon_sweep", "addon_tracer"), "homogeneous_phase:cornette_shanks",
-     "Cornette-Shanks phase exported as one HG lobe"),
+    # The Cornette-Shanks phase is exported as Henyey-Greenstein lobes
+    # fitted to it (scene_export/se_phase_fit.h): no mixture of lobes
+    # follows its (1 + mu^2) factor exactly. POV-Ray renders the
+    # atmosphere's scattering apart in frames, summed (it scatters with the
+    # plain mean of its media's phases); validation.peers on sky_sunset at
+    # 48x36: 0.87% mean relative, ratio 1.001 with the fitted lobe (1.63%,
+    # 1.024 with the lobe of the mean cosine). Cycles' atmosphere was 5-10%
+    # dark while rendered in one pass (Cycles 3.4 picks the colour channel
+    # of its distance sampling from one number per path); the export
+    # renders it once per channel with grey coefficients since 92f2aef
+    # (validation.cycles_channels: the sky's top third 0.983-0.994 of the
+    # reference), so that is no cause any more.
+    (("povray", "cycles", "eevee"), "phase:cornette_shanks",
+     "Cornette-Shanks phase exported as HG lobes fitted to it"),
     # gl_shafts' atmosphere: the optical depth from a table interpolated in
     # log tau (largest transmittance error 0.45%, gs_atmo_table_test) and
     # 3-point Gauss-Legendre per plane (docs/gl_shafts.md, "The atmosphere").
