@@ -226,6 +226,11 @@ static int candidates(const fit *f, int k, double *gs) {
   return n;
 }
 
+typedef double (*objective_fn)(const fit *, const double *, int, double *);
+static void pattern_search(const fit *f, objective_fn obj, double *gs, double *w, int n,
+                           double *e, double step, double min_step, int sweeps);
+static void store(const double *gs, const double *w, int n, se_hg_mixture *out);
+
 int se_phase_fit_cs(double g, int k, se_hg_mixture *out) {
   fit f; /* 48 kB */
   memset(out, 0, sizeof *out);
@@ -240,17 +245,95 @@ int se_phase_fit_cs(double g, int k, se_hg_mixture *out) {
   /* Pattern search on the lobes' g, the weights solved at every step:
    * steps from 0.01 halved down to 1e-5 (at most 400 sweeps). */
   double e = objective(&f, gs, n, w);
-  double step = 0.01;
-  for (int sweep = 0; sweep < 400 && step >= 1e-5; sweep++) {
+  pattern_search(&f, objective, gs, w, n, &e, 0.01, 1e-5, 400);
+  /* Lobes left without weight go; the heaviest first. */
+  store(gs, w, n, out);
+  return 1;
+}
+
+/* The signed fit (se_phase_fit_cs_signed). Its weights for the lobes gs
+ * minimise the same chi-square distance with sum w = 1 held exactly (the
+ * equality-constrained least squares through its KKT system); the lobes
+ * are feasible if at least SE__MIN_GAP apart, sum |w| <= SE_PHASE_FIT_MAX_ABS
+ * and the mixture >= 0 at the fit's samples. Returns the distance, or
+ * HUGE_VAL if infeasible. */
+#define SE__MIN_GAP 0.1
+#define SE__STARTS 6 /* the best starts refined */
+static double signed_objective(const fit *f, const double *gs, int n, double *w) {
+  enum { M = SE_PHASE_FIT_MAX_LOBES + 1 };
+  double cols[SE_PHASE_FIT_MAX_LOBES * SE__NMU], a[M * M], b[M], x[M];
+  const int m = n + 1;
+  for (int i = 0; i < n; i++)
+    for (int k = 0; k < i; k++)
+      if (fabs(gs[i] - gs[k]) < SE__MIN_GAP) return HUGE_VAL;
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < SE__NMU; j++)
+      cols[i * SE__NMU + j] = f->sv[j] * se_phase_hg(gs[i], f->mu[j]) * f->inv[j];
+  for (int i = 0; i < n; i++) {
+    for (int k = 0; k < n; k++) {
+      double s = 0.0;
+      for (int j = 0; j < SE__NMU; j++) s += cols[i * SE__NMU + j] * cols[k * SE__NMU + j];
+      a[i * m + k] = s;
+    }
+    double s = 0.0;
+    for (int j = 0; j < SE__NMU; j++) s += cols[i * SE__NMU + j] * f->sv[j];
+    b[i] = s;
+    a[i * m + n] = a[n * m + i] = 1.0;
+  }
+  a[n * m + n] = 0.0;
+  b[n] = 1.0;
+  if (!solve(a, b, x, m)) return HUGE_VAL;
+  double abs_sum = 0.0;
+  for (int i = 0; i < n; i++) {
+    w[i] = x[i];
+    abs_sum += fabs(x[i]);
+  }
+  if (!(abs_sum <= SE_PHASE_FIT_MAX_ABS)) return HUGE_VAL;
+  double e = 0.0;
+  for (int j = 0; j < SE__NMU; j++) {
+    double s = 0.0;
+    for (int i = 0; i < n; i++) s += w[i] * cols[i * SE__NMU + j];
+    if (s < 0.0) return HUGE_VAL;
+    e += (s - f->sv[j]) * (s - f->sv[j]);
+  }
+  return e;
+}
+
+/* Writes the lobes gs with weights w to *out, the largest |w| first, and
+ * drops lobes of weight 0. */
+static void store(const double *gs, const double *w, int n, se_hg_mixture *out) {
+  memset(out, 0, sizeof *out);
+  for (int i = 0; i < n; i++)
+    if (w[i] != 0.0) {
+      out->g[out->n] = gs[i];
+      out->w[out->n] = w[i];
+      out->n++;
+    }
+  for (int i = 1; i < out->n; i++)
+    for (int j = i; j > 0 && fabs(out->w[j]) > fabs(out->w[j - 1]); j--) {
+      double tg = out->g[j], tw = out->w[j];
+      out->g[j] = out->g[j - 1];
+      out->w[j] = out->w[j - 1];
+      out->g[j - 1] = tg;
+      out->w[j - 1] = tw;
+    }
+}
+
+/* The pattern search on the lobes' g (steps from `step` halved down to
+ * min_step, at most `sweeps` sweeps) for an objective of the signed or the
+ * non-negative fit; gs, w and *e hold the best. */
+static void pattern_search(const fit *f, objective_fn obj, double *gs, double *w, int n,
+                           double *e, double step, double min_step, int sweeps) {
+  for (int sweep = 0; sweep < sweeps && step >= min_step; sweep++) {
     int moved = 0;
     for (int i = 0; i < n; i++) {
       for (int s = -1; s <= 1; s += 2) {
         double t[SE_PHASE_FIT_MAX_LOBES], tw[SE_PHASE_FIT_MAX_LOBES];
         memcpy(t, gs, sizeof t);
         t[i] = fmax(-0.97, fmin(0.97, gs[i] + s * step));
-        double et = objective(&f, t, n, tw);
-        if (et < e) {
-          e = et;
+        double et = obj(f, t, n, tw);
+        if (et < *e) {
+          *e = et;
           memcpy(gs, t, sizeof t);
           memcpy(w, tw, sizeof tw);
           moved = 1;
@@ -259,22 +342,66 @@ int se_phase_fit_cs(double g, int k, se_hg_mixture *out) {
     }
     if (!moved) step *= 0.5;
   }
-  /* Lobes left without weight go; the heaviest first. */
-  memset(out, 0, sizeof *out);
-  for (int i = 0; i < n; i++)
-    if (w[i] > 0.0) {
-      out->g[out->n] = gs[i];
-      out->w[out->n] = w[i];
-      out->n++;
+}
+
+int se_phase_fit_cs_signed(double g, int k, se_hg_mixture *out) {
+  if (k < 2 || k > SE_PHASE_FIT_MAX_LOBES) return se_phase_fit_cs(g, k, out);
+  if (!se_phase_fit_cs(g, k, out)) return 0; /* the fallback */
+  if (!(g == g)) g = 0.0;
+  g = fmax(-0.95, fmin(0.95, g));
+  fit f;
+  fit_init(&f, g);
+  /* The starts: every increasing k-tuple of a grid over [-0.96, 0.96]
+   * (13 points for k 2 and 3, 9 for 4: 78, 286 and 126 starts). */
+  const int steps = k == 4 ? 9 : 13;
+  double sg[SE__STARTS][SE_PHASE_FIT_MAX_LOBES], se[SE__STARTS];
+  int ns = 0;
+  int idx[SE_PHASE_FIT_MAX_LOBES];
+  for (int i = 0; i < k; i++) idx[i] = i;
+  for (;;) {
+    double t[SE_PHASE_FIT_MAX_LOBES] = {0}, tw[SE_PHASE_FIT_MAX_LOBES];
+    for (int i = 0; i < k; i++) t[i] = -0.96 + 1.92 * idx[i] / (steps - 1);
+    double e = signed_objective(&f, t, k, tw);
+    /* Kept among the SE__STARTS best so far, sorted. */
+    if (e < HUGE_VAL && (ns < SE__STARTS || e < se[ns - 1])) {
+      int at = ns < SE__STARTS ? ns++ : ns - 1;
+      while (at > 0 && se[at - 1] > e) {
+        se[at] = se[at - 1];
+        memcpy(sg[at], sg[at - 1], sizeof sg[at]);
+        at--;
+      }
+      se[at] = e;
+      memcpy(sg[at], t, sizeof sg[at]);
     }
-  for (int i = 1; i < out->n; i++)
-    for (int j = i; j > 0 && out->w[j] > out->w[j - 1]; j--) {
-      double tg = out->g[j], tw = out->w[j];
-      out->g[j] = out->g[j - 1];
-      out->w[j] = out->w[j - 1];
-      out->g[j - 1] = tg;
-      out->w[j - 1] = tw;
+    int i = k - 1; /* the next tuple */
+    while (i >= 0 && idx[i] == steps - k + i) i--;
+    if (i < 0) break;
+    idx[i]++;
+    for (int j = i + 1; j < k; j++) idx[j] = idx[j - 1] + 1;
+  }
+  double best = HUGE_VAL, gs[SE_PHASE_FIT_MAX_LOBES] = {0}, w[SE_PHASE_FIT_MAX_LOBES] = {0};
+  for (int s = 0; s < ns; s++) {
+    double t[SE_PHASE_FIT_MAX_LOBES], tw[SE_PHASE_FIT_MAX_LOBES];
+    memcpy(t, sg[s], sizeof t);
+    double e = signed_objective(&f, t, k, tw);
+    pattern_search(&f, signed_objective, t, tw, k, &e, 0.02, 1e-5, 300);
+    if (e < best) {
+      best = e;
+      memcpy(gs, t, sizeof t);
+      memcpy(w, tw, sizeof tw);
     }
+  }
+  if (best == HUGE_VAL) return 1;
+  /* Kept only if non-negative on a grid ten times the fit's and better
+   * than the non-negative fit in its distance. */
+  for (int j = 0; j <= 20000; j++) {
+    double mu = -1.0 + j / 10000.0, s = 0.0;
+    for (int i = 0; i < k; i++) s += w[i] * se_phase_hg(gs[i], mu);
+    if (s < 0.0) return 1;
+  }
+  double wn[SE_PHASE_FIT_MAX_LOBES];
+  if (!(best < objective(&f, out->g, out->n, wn))) return 1;
+  store(gs, w, k, out);
   return 1;
 }
 

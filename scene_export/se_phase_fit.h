@@ -52,7 +52,8 @@ extern "C" {
 #define SE_PHASE_FIT_MAX_LOBES 4
 
 /* A mixture of n Henyey-Greenstein lobes: eccentricities g[i] in
- * [-0.97, 0.97], weights w[i] > 0 summing to 1, heaviest first. */
+ * [-0.97, 0.97], weights w[i] summing to 1, the largest |w| first; w[i] > 0
+ * but from se_phase_fit_cs_signed. */
 typedef struct se_hg_mixture {
   int n;
   double g[SE_PHASE_FIT_MAX_LOBES];
@@ -72,6 +73,28 @@ double se_hg_mixture_eval(const se_hg_mixture *m, double mu);
  * weight) and returns 1; returns 0 with out->n = 0 only if the 3.6 MB of
  * work space cannot be allocated. */
 int se_phase_fit_cs(double g, int k, se_hg_mixture *out);
+
+/* The fit of k lobes (2 <= k <= SE_PHASE_FIT_MAX_LOBES; other k give
+ * se_phase_fit_cs) whose weights may be NEGATIVE, for a renderer that sums
+ * lobes itself (POV-Ray's frames: se_pov_terms.h): the weights sum to 1,
+ * sum |w_i| <= SE_PHASE_FIT_MAX_ABS, the lobes are at least 0.02 apart and
+ * the mixture is >= 0 at every cos of a grid of 20001 (so it is a phase).
+ * A negative lobe takes light from the sides: with three lobes (a forward
+ * one, a weak backward one and a negative one near g 0.25) the mixture
+ * follows the (1 + mu^2) factor that no non-negative mixture gets (the
+ * table of se_phase_fit_test: g 0.7 largest relative error 0.6% against
+ * 37%). The weights minimise the same chi-square distance as
+ * se_phase_fit_cs with sum w = 1 held exactly (the equality-constrained
+ * least squares, its KKT system); the lobes start from every increasing
+ * k-tuple of a grid over [-0.96, 0.96] (13 points; 9 for k = 4) and are
+ * the six best refined by a pattern search (steps 0.02 halved to 1e-5,
+ * at most 300 sweeps). Lobes are ordered by |w|, largest first. If no signed mixture is feasible or
+ * better than the non-negative fit, *out is se_phase_fit_cs(g, k). Returns
+ * 0 as se_phase_fit_cs does. Slower than se_phase_fit_cs (six pattern
+ * searches over k lobes, each step solving the weights), growing with k;
+ * the exporter fits once per export (k = 3). */
+#define SE_PHASE_FIT_MAX_ABS 3.0
+int se_phase_fit_cs_signed(double g, int k, se_hg_mixture *out);
 
 /* The fit of at most kmax lobes whose lightest lobe weighs at least
  * min_weight: se_phase_fit_cs with kmax, kmax - 1, ... lobes until it

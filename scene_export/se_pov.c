@@ -37,6 +37,14 @@ typedef struct pov {
   double lobe_w[SE_POV_MAX_LOBES];     /* and their weights */
 } pov;
 
+/* The sign the summing step gives frame f (1-based): the lobes of a
+ * signed fit (se_pov_terms.h) with a negative weight are rendered with
+ * |w| and subtracted; frame 1 and the other frames are added. */
+static int frame_sign(const pov *p, int f) {
+  int lobe = p->scene->medium.type == SH_MEDIUM_ATMOSPHERE ? f - 2 : f - 1;
+  return f > 1 && lobe >= 0 && lobe < p->nlobes && p->lobe_w[lobe] < 0.0 ? -1 : 1;
+}
+
 /* Numbers: 10 significant digits, enough for half-float output. */
 static void num(se_buf *b, double v) { se_buf_printf(b, "%.10g", v == 0 ? 0.0 : v); }
 
@@ -104,12 +112,15 @@ static void header(pov *p, const char *name) {
   free(file);
   if (p->split) {
     se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes frames\n"
-                     "// %s1.exr to %s%d.exr (%s), whose sum is the image:\n// `oiiotool",
+                     "// %s1.exr to %s%d.exr (%s),\n"
+                     "// whose signed sum (the .ini's Frame_Signs) is the image:\n// `oiiotool",
                   name, name, name, p->nframes,
                   p->scene->medium.type == SH_MEDIUM_ATMOSPHERE
                       ? "Rayleigh's light and the surfaces', then Mie's, a frame per lobe"
                       : "a frame per lobe of the phase, the surfaces' light in the first");
-    for (int f = 1; f <= p->nframes; f++) se_buf_printf(b, " %s%d.exr%s", name, f, f > 1 ? " --add" : "");
+    for (int f = 1; f <= p->nframes; f++)
+      se_buf_printf(b, " %s%d.exr%s", name, f,
+                    f == 1 ? "" : frame_sign(p, f) < 0 ? " --sub" : " --add");
     se_buf_printf(b, " -o %s.exr`.\n"
                      "// Linear radiance as half-float OpenEXR, one ray through each pixel "
                      "centre.\n",
@@ -546,19 +557,28 @@ static void medium_density(pov *p, const sh_vec3 lo) {
  * scene's key. */
 static void lobes_note(pov *p, const char *what, const sh_phase *phase) {
   if (p->lobes[0].exact) return;
-  if (p->nlobes == 1)
+  if (p->nlobes == 1) {
     se_note_one_lobe(p->notes, what, "POV-Ray", phase, p->lobes[0].g, "");
-  else
-    se_note(p->notes,
-            "%s: POV-Ray has no %s phase; it is rendered as %d "
-            "Henyey-Greenstein lobes fitted to it, g = %.4g and %.4g of weights %.4g and "
-            "%.4g, one frame each.",
-            what, se_phase_name(phase->type), p->nlobes, p->lobes[0].g, p->lobes[1].g,
-            p->lobe_w[0], p->lobe_w[1]);
+    return;
+  }
+  char list[SE_POV_MAX_LOBES * 40] = "";
+  size_t len = 0;
+  int negative = 0;
+  for (int i = 0; i < p->nlobes && len < sizeof list; i++)
+    len += (size_t)snprintf(list + len, sizeof list - len, "%s%.4g (weight %.4g)",
+                            i == 0 ? "" : i == p->nlobes - 1 ? " and " : ", ", p->lobes[i].g,
+                            p->lobe_w[i]);
+  for (int i = 0; i < p->nlobes; i++) negative |= p->lobe_w[i] < 0.0;
+  se_note(p->notes,
+          "%s: POV-Ray has no %s phase; it is rendered as %d Henyey-Greenstein lobes fitted "
+          "to it, g = %s, one frame each%s.",
+          what, se_phase_name(phase->type), p->nlobes, list,
+          negative ? ", a negative weight's frame subtracted" : "");
 }
 
 /* A scattering block of the lobe pp of weight w for scattering `ss` per
- * unit: colour w ss / k with `extinction` k / w (k = 4 pi times the mean of
+ * unit: colour |w| ss / k with `extinction` k / |w| (a negative weight's
+ * frame is subtracted: frame_sign) (k = 4 pi times the mean of
  * POV-Ray's k), so that the extinction is the whole ss whatever the lobe's
  * share of the scattering. `indent` before each line. */
 static void scattering(pov *p, const se_phase_pov *pp, double w, sh_vec3 ss,
@@ -566,9 +586,9 @@ static void scattering(pov *p, const se_phase_pov *pp, double w, sh_vec3 ss,
   se_buf *b = p->b;
   double k = 4.0 * SH_PI * pp->mean;
   se_buf_printf(b, "%sscattering {\n%s  %d, ", indent, indent, pp->type);
-  colour(b, sh_scale(ss, w / k));
+  colour(b, sh_scale(ss, fabs(w) / k));
   se_buf_printf(b, "\n%s  extinction ", indent);
-  num(b, k / w);
+  num(b, k / fabs(w));
   if (pp->type == 5) {
     se_buf_printf(b, "\n%s  eccentricity ", indent);
     num(b, pp->g);
@@ -595,8 +615,8 @@ static void medium(pov *p) {
                  "// midpoint rule (with exact transmittance in a homogeneous medium; method 3\n"
                  "// is biased).\n");
   se_buf_printf(b, "// Phase: %s; POV-Ray's k has sphere mean %.9g, so the scattering colour\n"
-                   "// is w sigma_s / (4 pi mean) and `extinction` 4 pi mean / w, w the lobe's\n"
-                   "// weight.\n",
+                   "// is |w| sigma_s / (4 pi mean) and `extinction` 4 pi mean / |w|, w the\n"
+                   "// lobe's weight (a negative weight's frame is subtracted).\n",
                 p->lobes[0].comment, p->lobes[0].mean);
   if (p->split)
     se_buf_puts(b, "// POV-Ray phases all media in an interior with the plain mean of their\n"
@@ -716,9 +736,10 @@ static void atmosphere(pov *p) {
   vector(b, p->split ? "rgb SE_Lit * " : "rgb ", sh_scale(a->ground_albedo, SH_INV_PI));
   se_buf_puts(b, " }\n  finish { ambient 0 diffuse 1 emission 0 }\n}\n\n");
   se_buf_puts(b, "// The air: the top sphere's interior, media of one phase type; scattering\n"
-                 "// colours w sigma_s / (4 pi S) with `extinction` 4 pi S / w, S the mean of\n"
-                 "// that type's k over the sphere and w the lobe's weight, so that the\n"
-                 "// extinction is exact and the in-scattering is w sigma_s times the lobe.\n");
+                 "// colours |w| sigma_s / (4 pi S) with `extinction` 4 pi S / |w|, S the\n"
+                 "// mean of that type's k over the sphere and w the lobe's weight, so that\n"
+                 "// the extinction is exact and the in-scattering is |w| sigma_s times the\n"
+                 "// lobe (a negative weight's frame is subtracted).\n");
   se_buf_puts(b, "sphere {\n  ");
   point(p, a->center);
   se_buf_puts(b, ", ");
@@ -760,7 +781,7 @@ static void atmosphere(pov *p) {
   se_buf_puts(b, "  }\n}\n\n");
 }
 
-static void ini(se_buf *b, const char *name, const sh_scene *s, int nframes) {
+static void ini(const pov *p, se_buf *b, const char *name, const sh_scene *s, int nframes) {
   se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
   se_buf_printf(b, "%s.ini` in this directory.\n", name);
   se_buf_printf(b, "Input_File_Name=%s.pov\n", name);
@@ -771,10 +792,15 @@ static void ini(se_buf *b, const char *name, const sh_scene *s, int nframes) {
   se_buf_puts(b, "; One ray through each pixel centre.\n");
   se_buf_puts(b, "Antialias=Off\nJitter=Off\nQuality=9\n");
   se_buf_puts(b, "Display=Off\nPause_When_Done=Off\nVerbose=Off\n");
-  if (nframes > 1)
-    se_buf_printf(b, "; %d frames, %s1.exr to %s%d.exr: the image is their sum.\n"
-                     "Initial_Frame=1\nFinal_Frame=%d\n",
-                  nframes, name, name, nframes, nframes);
+  if (nframes > 1) {
+    se_buf_printf(b, "; %d frames, %s1.exr to %s%d.exr: the image is their signed sum, each\n"
+                     "; frame added (+) or subtracted (-) as Frame_Signs says (a comment to\n"
+                     "; POV-Ray; validation's pov_frames reads it).\n; Frame_Signs=",
+                  nframes, name, name, nframes);
+    for (int f = 1; f <= nframes; f++)
+      se_buf_printf(b, "%s%c", f > 1 ? " " : "", frame_sign(p, f) < 0 ? '-' : '+');
+    se_buf_printf(b, "\nInitial_Frame=1\nFinal_Frame=%d\n", nframes);
+  }
 }
 
 /* POV-Ray's frame (se_scale.h), and the content sphere the tolerances
@@ -884,6 +910,6 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   if (body.data) se_buf_puts(povb, body.data);
   povb->failed |= body.failed;
   se_buf_free(&body);
-  ini(inib, name, scene, p.nframes);
+  ini(&p, inib, name, scene, p.nframes);
   return SH_OK;
 }

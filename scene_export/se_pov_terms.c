@@ -66,12 +66,26 @@ int se_phase_to_pov_lobes(const sh_phase *phase, se_phase_pov lobes[SE_POV_MAX_L
   w[0] = 1.0;
   se_hg_mixture m;
   if (phase->type != SH_PHASE_CORNETTE_SHANKS ||
-      !se_phase_fit_cs_lobes(phase->g, SE_POV_MAX_LOBES, SE_POV_MIN_LOBE_WEIGHT, &m))
+      !se_phase_fit_cs_signed(phase->g, SE_POV_SIGNED_LOBES, &m))
     return 1;
+  int negative = 0;
+  for (int i = 0; i < m.n; i++) negative |= m.w[i] < 0.0;
+  /* No signed mixture: the non-negative fit's lobes worth a frame. */
+  if (!negative && !se_phase_fit_cs_lobes(phase->g, 2, SE_POV_MIN_LOBE_WEIGHT, &m)) return 1;
+  /* The first lobe (frame 1 of a medium, with the surfaces' light) is
+   * added: the heaviest positive one goes first. */
+  for (int i = 1; i < m.n && m.w[0] < 0.0; i++)
+    if (m.w[i] > 0.0) {
+      double tg = m.g[0], tw = m.w[0];
+      m.g[0] = m.g[i];
+      m.w[0] = m.w[i];
+      m.g[i] = tg;
+      m.w[i] = tw;
+    }
   for (int i = 0; i < m.n; i++) {
     lobes[i] = lobes[0];
     lobes[i].g = m.g[i];
-    lobes[i].comment = "Cornette-Shanks approximated by a Henyey-Greenstein lobe fitted to it "
+    lobes[i].comment = "Cornette-Shanks approximated by Henyey-Greenstein lobes fitted to it "
                        "(se_phase_fit.h), POV-Ray type 5";
     w[i] = m.w[i];
   }

@@ -10,9 +10,10 @@ const se_target se_targets[] = {
      "OUT = DIR/NAME.pov: writes NAME.pov, NAME.ini and the light maps "
      "NAME_map<i>.exr; `povray NAME.ini` in DIR renders DIR/NAME.exr (an "
      "atmosphere with Mie scattering, or a Cornette-Shanks phase rendered as "
-     "two lobes: frames NAME1.exr, NAME2.exr, ..., whose sum is the image: "
-     "oiiotool NAME1.exr NAME2.exr --add -o NAME.exr, the .pov's header "
-     "names them all)"},
+     "several lobes: frames NAME1.exr, NAME2.exr, ..., whose signed sum is "
+     "the image, e.g. oiiotool NAME1.exr NAME2.exr --add NAME3.exr --sub -o "
+     "NAME.exr; the .pov's header has the command, the .ini's Frame_Signs "
+     "the signs)"},
     {"blender", "py", se_blender_build,
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
      "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "

@@ -399,18 +399,28 @@ def pov_frames(work, name="scene", log=None):
     """The image POV-Ray's render of NAME.ini in `work` stands for: NAME.exr,
     or, for a scene scene_export renders in frames (an atmosphere with Mie
     scattering, a phase exported as several lobes: docs/scene_export.md),
-    the sum of NAME1.exr, NAME2.exr, ... written to NAME.exr by oiiotool
-    (OpenImageIO's, float sum of the half-float frames). None if POV-Ray
-    wrote neither."""
+    the signed sum of NAME1.exr, NAME2.exr, ... written to NAME.exr by
+    oiiotool (OpenImageIO's, float sum of the half-float frames): a frame is
+    subtracted where the .ini's `; Frame_Signs=+ + -` line says `-` (a lobe
+    of negative weight, rendered with its |weight|). None if POV-Ray wrote
+    neither."""
     work = Path(work)
     image = work / (name + ".exr")
     frames = []
     while (work / ("%s%d.exr" % (name, len(frames) + 1))).exists():
         frames.append(work / ("%s%d.exr" % (name, len(frames) + 1)))
     if len(frames) >= 2:
+        signs = ["+"] * len(frames)
+        ini = work / (name + ".ini")
+        m = re.search(r"(?m)^; Frame_Signs=([+\- ]+)$", ini.read_text()) if ini.exists() else None
+        if m:
+            signs = m.group(1).split()
+            if len(signs) != len(frames) or signs[0] != "+":
+                raise RunFailed("%s's Frame_Signs (%s) do not match its %d frames"
+                                % (ini.name, m.group(1), len(frames)))
         cmd = ["oiiotool", frames[0]]
-        for f in frames[1:]:
-            cmd += [f, "--add"]
+        for f, sign in zip(frames[1:], signs[1:]):
+            cmd += [f, "--sub" if sign == "-" else "--add"]
         command(cmd + ["-d", "float", "-o", image], cwd=work, log=log)
     return image if image.exists() else None
 
