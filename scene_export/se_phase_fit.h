@@ -41,7 +41,9 @@
  * of the mean cosine (g 0.8: 0.8436, 47% bright straight ahead) the fit
  * (g 0.8: 0.8237) is 15% bright there and up to 52% bright at the side;
  * for g 0.3 and 0.5 the two lobes bring the largest error from 40% to 11%
- * and 18%. The Cornette-Shanks phase stays approximated. */
+ * and 18%. With signed weights (se_phase_fit_cs_signed, below: for a
+ * renderer that sums the lobes itself) three lobes follow the factor to
+ * 0.2-3%. The Cornette-Shanks phase stays approximated. */
 #ifndef SE_PHASE_FIT_H
 #define SE_PHASE_FIT_H
 
