@@ -1,7 +1,8 @@
 """Unit tests of the validation scripts' own logic (no renderer needed):
 the Pareto front and time-to-error, the scene content key, the run cache's
 resume behaviour, the hard cases' scene scaling and projection, the SVG
-plot and the report pages. Run from the source tree:
+plot and the report pages, and POV-Ray's frames summed with their signs
+(pov_frames, with OpenImageIO's oiiotool). Run from the source tree:
 python3 -m validation.test_validate."""
 
 import json
@@ -534,6 +535,40 @@ class ProgressTest(unittest.TestCase):
         self.assertEqual(ex.seconds_left(), 5.0)
         self.assertEqual(fmt_left(3725), "1 h 02 min")
         self.assertEqual(fmt_left(200), "3 min 20 s")
+
+
+class PovFramesTest(unittest.TestCase):
+    """pov_frames: the frames' signed sum as the .ini's Frame_Signs says (a
+    lobe of negative weight is rendered with |w| and subtracted); oiiotool
+    makes constant half-float frames (OpenImageIO, as POV-Ray writes)."""
+
+    @staticmethod
+    def _frame(path, rgb):
+        subprocess.run(["oiiotool", "--create", "2x2", "3",
+                        "--fill:color=%g,%g,%g" % rgb, "0,0,2,2", "-d", "half",
+                        "-o", str(path)], check=True, capture_output=True)
+
+    @staticmethod
+    def _colour(path):
+        out = subprocess.run(["oiiotool", str(path), "--printstats"], check=True,
+                             capture_output=True, text=True).stdout
+        line = next(l for l in out.splitlines() if "Stats Avg:" in l)
+        return [float(v) for v in line.split(":")[1].split()[:3]]
+
+    def test_signed_sum(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            work = Path(tmp)
+            for i, rgb in enumerate([(1, 2, 3), (0.5, 0.5, 0.5), (0.25, 0, 1)]):
+                self._frame(work / ("scene%d.exr" % (i + 1)), rgb)
+            ini = work / "scene.ini"
+            ini.write_text("Input_File_Name=scene.pov\n; Frame_Signs=+ - +\n"
+                           "Initial_Frame=1\nFinal_Frame=3\n")
+            self.assertEqual(self._colour(renderers.pov_frames(work)), [0.75, 1.5, 3.5])
+            ini.write_text("Initial_Frame=1\nFinal_Frame=3\n")  # no signs: all added
+            self.assertEqual(self._colour(renderers.pov_frames(work)), [1.75, 2.5, 4.5])
+            ini.write_text("; Frame_Signs=+ -\n")  # signs that do not match the frames
+            with self.assertRaises(RunFailed):
+                renderers.pov_frames(work)
 
 
 if __name__ == "__main__":
