@@ -264,13 +264,28 @@ def _dot(a, b):
     return sum(x * y for x, y in zip(a, b))
 
 
+def camera_frame(camera):
+    """The unit vectors forward, right and up of a scene's camera
+    (sh_camera.c: right = forward x up, up = right x forward)."""
+    fwd = _norm([b - a for a, b in zip(camera["position"], camera["look_at"])])
+    right = _norm(_cross(fwd, camera.get("up", [0, 1, 0])))
+    return fwd, right, _cross(right, fwd)
+
+
+def pixel_direction(camera, x, y, width, height):
+    """The unit direction of the camera ray through the continuous pixel
+    coordinates (x, y) (x right, y down) of an image width x height."""
+    fwd, right, up = camera_frame(camera)
+    ty = math.tan(math.radians(camera["fov_y_deg"]) / 2)
+    sx, sy = (2.0 * x / width - 1.0) * ty * width / height, (1.0 - 2.0 * y / height) * ty
+    return _norm([f + r * sx + u * sy for f, r, u in zip(fwd, right, up)])
+
+
 def project(camera, point):
     """The continuous pixel coordinates (x right, y down) where the camera
     sees `point` (sh_camera.c's pinhole), or None if it is behind."""
     pos = camera["position"]
-    fwd = _norm([b - a for a, b in zip(pos, camera["look_at"])])
-    right = _norm(_cross(fwd, camera.get("up", [0, 1, 0])))
-    up = _cross(right, fwd)
+    fwd, right, up = camera_frame(camera)
     d = [b - a for a, b in zip(pos, point)]
     z = _dot(d, fwd)
     if z <= 0:

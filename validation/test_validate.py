@@ -14,7 +14,7 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from . import renderers, report, slurm
+from . import atmo_phase_bias, renderers, report, slurm
 from .hard import bounds as hard_bounds
 from .hard import cases as hard_cases
 from .hard import runner as hard_runner
@@ -569,6 +569,33 @@ class PovFramesTest(unittest.TestCase):
             ini.write_text("; Frame_Signs=+ -\n")  # signs that do not match the frames
             with self.assertRaises(RunFailed):
                 renderers.pov_frames(work)
+
+
+class AtmoPhaseBiasTest(unittest.TestCase):
+    """atmo_phase_bias's pieces: the phases are normalised (Simpson over
+    cos), Rayleigh is Cornette-Shanks at g = 0, and a pixel's phase angle
+    follows core/sh_camera.c (the centre pixel of an odd image looks along
+    the view; looking into the light, cos = 1 there)."""
+
+    def test_phases(self):
+        n = 4000
+        for f in (atmo_phase_bias.rayleigh, lambda c: atmo_phase_bias.hg(0.6, c),
+                  lambda c: atmo_phase_bias.cornette_shanks(0.5, c)):
+            s = f(-1.0) + f(1.0) + sum((4 if j % 2 else 2) * f(-1.0 + 2.0 * j / n)
+                                       for j in range(1, n))
+            self.assertAlmostEqual(2 * math.pi * s * (2.0 / n) / 3.0, 1.0, places=6)
+        for c in (-1.0, 0.3, 1.0):
+            self.assertAlmostEqual(atmo_phase_bias.rayleigh(c),
+                                   atmo_phase_bias.cornette_shanks(0.0, c), places=12)
+
+    def test_pixel_mu(self):
+        cam = {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_y_deg": 60}
+        mu = atmo_phase_bias.pixel_mu(cam, [-1, 0, 0], 5, 3)
+        self.assertAlmostEqual(mu[(2, 1)], 1.0, places=12)
+        # Half the field of view up (the top row's centre is 2/3 of it).
+        tan_top = math.tan(math.radians(30)) * 2.0 / 3.0
+        self.assertAlmostEqual(mu[(2, 0)], 1.0 / math.sqrt(1 + tan_top ** 2), places=12)
+        self.assertAlmostEqual(mu[(0, 1)], mu[(4, 1)], places=12)
 
 
 if __name__ == "__main__":
