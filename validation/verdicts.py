@@ -155,6 +155,15 @@ CAUSES = [
     # reference), so that is no cause any more.
     (("povray", "cycles", "eevee"), "phase:cornette_shanks",
      "Cornette-Shanks phase exported as HG lobes fitted to it"),
+    # What the atmosphere's exported lobes cost the image, measured apart on
+    # the reference's Rayleigh and Mie light (validation.atmo_phase_bias,
+    # 40x30): 2.5% relative RMS on sky_sunset, 0.5% on earth_from_space.
+    # A larger bias the sweep's two points give Cycles there (7.5% and
+    # 1.7% at 37178c5) is not resolved beyond that: at 24x18 two seeds
+    # differ by more (validation.peers; docs/validation.md).
+    (("cycles",), "medium:atmosphere",
+     "the phases' lobes cost 2.5% on the sunset and 0.5% from space "
+     "(validation.atmo_phase_bias); more is not resolved under the noise"),
     # gl_shafts' atmosphere: the optical depth from a table interpolated in
     # log tau (largest transmittance error 0.45%, gs_atmo_table_test) and
     # 3-point Gauss-Legendre per plane (docs/gl_shafts.md, "The atmosphere").
