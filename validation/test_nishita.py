@@ -126,7 +126,13 @@ class BenchTable(unittest.TestCase):
         self.assertIn("NOT met", slow)
         quiet = [("gl_shafts", "defaults", 0.03, 0.01)] + self.rows()[1:]
         text = bench_sky.table(self.Ctx, "sky", self.Scene, quiet)
-        self.assertIn("gl_shafts' error within the truth's noise", text)
+        # gl_shafts within the truth's noise (s^2 / M = 0.0005): the
+        # reference's time to that noise, 10 s x 0.002 / 0.0005, a lower
+        # bound; a POV-Ray within it too is at gl_shafts' error in its time.
+        self.assertIn("> 40 (est., to the truth's noise: gl_shafts' error is within it)", text)
+        exact = quiet[:2] + [("pov", "draft", 5.0, 0.015)]
+        self.assertIn("its own (its error at most gl_shafts'",
+                      bench_sky.table(self.Ctx, "sky", self.Scene, exact))
 
     def test_size(self):
         class Small:
