@@ -64,7 +64,7 @@ grep -q '"height_fog": {' "$dir/fog_out.blender.json" \
 # 1.52, -0.95, 0.43) in three frames, the later ones with their lobe's
 # scattering only, the negative one subtracted by the summing step.
 sed 's/"g": 0.7/"g": 0.5/' "$dir/cs.json" >"$dir/cs5.json"
-"$tool" "$dir/cs5.json" --to pov -o "$dir/cs5_out.pov" 2>"$dir/err"
+"$tool" "$dir/cs5.json" --to pov -o "$dir/cs5_out.pov" --width 16 2>"$dir/err"
 check "--to pov writes three signed Cornette-Shanks lobes" 0 $?
 grep -qF "rendered as 3 Henyey-Greenstein lobes fitted to it, g = 0.5048 (weight 1.521), 0.1834 (weight -0.9524) and -0.06121 (weight 0.4315), one frame each, a negative weight's frame subtracted" "$dir/err" \
   || { echo "FAIL: three-lobe note: $(cat "$dir/err")"; fail=1; }
@@ -72,6 +72,27 @@ grep -q '^Final_Frame=3$' "$dir/cs5_out.ini" && grep -q '^; Frame_Signs=+ - +$' 
   && grep -q '#if (frame_number = 2) // lobe 2: g 0.1834, weight -0.9524' "$dir/cs5_out.pov" \
   && grep -qF 'cs5_out2.exr --sub cs5_out3.exr --add -o cs5_out.exr' "$dir/cs5_out.pov" \
   || { echo "FAIL: the signed lobes' frames are missing"; fail=1; }
+# It says what it wrote and the commands that make the image (README.md);
+# they do, here at 16x12: POV-Ray's frames, then their signed sum.
+message_has "wrote line" "$dir/err" "scene_export: wrote $dir/cs5_out.pov, $dir/cs5_out.ini"
+render="cd $dir && povray cs5_out.ini && oiiotool cs5_out1.exr cs5_out2.exr --sub cs5_out3.exr --add -o cs5_out.exr"
+message_has "render line" "$dir/err" "scene_export: render: $render"
+message_has "the .ini's note" "$dir/cs5_out.ini" "; POV-Ray writes the frames cs5_out1.exr to cs5_out3.exr, not cs5_out.exr: cs5_out.exr is"
+if command -v povray >/dev/null && command -v oiiotool >/dev/null; then
+  (eval "$(sed -n 's/^scene_export: render: //p' "$dir/err")") >"$dir/render.log" 2>&1
+  check "the printed render commands" 0 $?
+  iinfo "$dir/cs5_out.exr" 2>/dev/null | grep -Eq "16 x +12," \
+    || { echo "FAIL: the render commands made no image: $(tail -5 "$dir/render.log")"; fail=1; }
+fi
+# One frame: POV-Ray alone; Blender: its command line; -q: nothing.
+"$tool" "$data/point_medium.json" --to pov -o "$dir/one_out.pov" 2>"$dir/err"
+message_has "one-frame render line" "$dir/err" "scene_export: render: cd $dir && povray one_out.ini"
+grep -q "oiiotool\|not one_out.exr" "$dir/err" "$dir/one_out.ini" && { echo "FAIL: a one-frame export sums frames"; fail=1; }
+"$tool" "$data/point_medium.json" --to blender -o "$dir/one_out.py" 2>"$dir/err"
+message_has "blender render line" "$dir/err" "scene_export: render: blender -b -P $dir/one_out.py -- --engine cycles --out $dir/one_out.exr"
+"$tool" "$dir/cs5.json" --to pov -o "$dir/one_out.pov" -q 2>"$dir/err"; check "-q" 0 $?
+[ -s "$dir/err" ] && { echo "FAIL: -q printed: $(cat "$dir/err")"; fail=1; }
+rm -f "$dir"/one_out*
 rm -f "$dir"/fog_out.* "$dir"/cs5_out.* "$dir/cs.json" "$dir/cs5.json"
 # The atmosphere: POV-Ray and Blender write it (approximated: --strict
 # refuses), and the Blender script refuses it for EEVEE with its reason.

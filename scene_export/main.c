@@ -17,7 +17,7 @@ static const char *const TOOL = "scene_export";
 
 typedef struct args {
   const char *output, *scale;
-  int to, quality, strict, parents, verbose;
+  int to, quality, strict, parents, verbose, quiet;
   long width, height; /* --width, --height; 0: the scene's */
 } args;
 
@@ -53,6 +53,8 @@ static sh_cli_option options[] = {
     SH_CLI_SIZE_OPTIONS(FIELD(width), FIELD(height)),
     {"verbose", 'v', SH_CLI_FLAG, NULL, 0, FIELD(verbose), 0, 0, 0, 1, NULL,
      NULL, NULL, NULL, "print the scale and origin the export chose"},
+    {"quiet", 'q', SH_CLI_FLAG, NULL, 0, FIELD(quiet), 0, 0, 0, 1, NULL, NULL,
+     NULL, NULL, "no messages but errors: no warnings, no `wrote` and `render` lines"},
 };
 
 /* --scale's value into opt: 1, or prints the problem and returns 0. */
@@ -93,7 +95,22 @@ static void help_targets(FILE *f) {
   }
   fprintf(f, "\nApproximations are printed as warnings on stderr and written "
              "into the output.\nFiles are written whole or not at all; a "
-             "refused --strict export exits 2.\n");
+             "refused --strict export exits 2.\nA successful export prints "
+             "(on stderr, as the renderers do) `scene_export: wrote\nFILES` "
+             "and `scene_export: render: COMMANDS`, the shell commands that "
+             "make the image\n(for POV-Ray frames, povray then oiiotool's "
+             "signed sum).\n");
+}
+
+/* The renderers' last line (sh_cli_render_done's form), then the commands
+ * that make the image from the files. */
+static void print_done(const se_output *result) {
+  fprintf(stderr, "%s: wrote", TOOL);
+  for (int k = 0; k < result->count; k++)
+    fprintf(stderr, "%s %s", k ? "," : "", result->files[k].path);
+  fputc('\n', stderr);
+  if (result->render.data && !result->render.failed)
+    fprintf(stderr, "%s: render: %s\n", TOOL, result->render.data);
 }
 
 int main(int argc, char **argv) {
@@ -104,7 +121,7 @@ int main(int argc, char **argv) {
       "the same\nimage in linear radiance (docs/scene_export.md).",
       options, (int)(sizeof options / sizeof *options), 1, 1, help_targets, NULL,
       NULL, NULL, NULL, NULL};
-  args a = {NULL, NULL, -1, SE_QUALITY_DRAFT, 0, 0, 0, 0, 0};
+  args a = {NULL, NULL, -1, SE_QUALITY_DRAFT, 0, 0, 0, 0, 0, 0};
   sh_cli_args parsed;
   int rc = sh_cli_parse(&tool, argc, argv, &a, &parsed);
   if (rc >= 0) return rc;
@@ -121,25 +138,28 @@ int main(int argc, char **argv) {
   if (!parse_scale(a.scale, &opt)) return SH_EXIT_BAD_INPUT;
 
   sh_scene *scene = NULL;
-  if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], 0, &scene))) return rc;
+  if ((rc = sh_cli_load_scene(TOOL, parsed.operands[0], a.quiet, &scene))) return rc;
   /* The image size every target writes (the .ini's Width/Height and the
    * .pov's aspect, the Blender data's render size, the JSON camera) is the
    * camera's: --width/--height change it as they do the renderers'. */
   sh_cli_resize(scene, a.width, a.height);
   sh_error err = SH_ERROR_INIT;
   se_notes notes = {0};
-  se_frame frame;
+  se_output result;
   sh_status st = se_export_scene(scene, target, &opt, a.output, a.strict, &notes,
-                                 &frame, &err);
-  if (a.verbose && frame.scale > 0) {
-    char *text = se_scale_describe(&frame);
+                                 &result, &err);
+  if (a.verbose && result.has_frame && result.frame.scale > 0) {
+    char *text = se_scale_describe(&result.frame);
     fprintf(stderr, "%s: frame: %s\n", TOOL, text ? text : "out of memory");
     free(text);
   }
   if (st == SH_OK) {
     sh_cli_dirs_keep();
-    for (int i = 0; i < notes.count; i++)
-      fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);
+    if (!a.quiet) {
+      for (int i = 0; i < notes.count; i++)
+        fprintf(stderr, "%s: warning: %s\n", TOOL, notes.text[i]);
+      print_done(&result);
+    }
   } else if (a.strict && notes.count > 0 && st == SH_ERR_SCENE) {
     for (int i = 0; i < notes.count; i++)
       fprintf(stderr, "%s: error: --strict: %s\n", TOOL, notes.text[i]);
@@ -149,6 +169,7 @@ int main(int argc, char **argv) {
   } else {
     rc = sh_cli_report(TOOL, &err);
   }
+  se_output_free(&result);
   se_notes_free(&notes);
   sh_scene_free(scene);
   return rc;

@@ -656,6 +656,16 @@ sh_status se_blender_build(const sh_scene *scene, const se_options *opt,
       se_json_text(jb, root, 0);
       se_buf_puts(jb, "\n");
       se_buf_append(pb, (const char *)se_blender_script, se_blender_script_size);
+      /* The command that renders it (se_output.render), into NAME.exr. */
+      char *exr = se_replace_extension(py_path, ".exr");
+      if (!exr) st = sh_error_set(err, SH_ERR_NOMEM, "out of memory");
+      else {
+        se_buf_puts(&out->render, "blender -b -P ");
+        se_shell_word(&out->render, py_path);
+        se_buf_puts(&out->render, " -- --engine cycles --out ");
+        se_shell_word(&out->render, exr);
+        free(exr);
+      }
     }
   }
   json_decref(root);

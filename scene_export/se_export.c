@@ -124,6 +124,7 @@ void se_output_free(se_output *out) {
     }
   }
   free(out->files);
+  se_buf_free(&out->render);
   memset(out, 0, sizeof *out);
 }
 

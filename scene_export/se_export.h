@@ -68,6 +68,10 @@ typedef struct se_output {
   se_file *files; /* written in this order; put the main file last */
   int has_frame;  /* the target chose a frame (POV-Ray, Blender) ... */
   se_frame frame; /* ... this one: its scale and origin (se_scale.h) */
+  /* The shell commands that make the image from the files, one line
+   * (empty for a target without one, json): what scene_export prints as
+   * `render: ...`. */
+  se_buf render;
 } se_output;
 
 /* Adds a text file and returns its buffer to fill (NULL if out of memory).

@@ -101,6 +101,37 @@ static void card_matrix(pov *p, const se_card *c) {
 
 static int is_grey(sh_vec3 c) { return c.x == c.y && c.y == c.z; }
 
+/* The summing step's arguments after `oiiotool`: the frames, each after
+ * the first added or subtracted by its sign, into NAME.exr. */
+static void oiiotool_args(const pov *p, se_buf *b, const char *name) {
+  for (int f = 1; f <= p->nframes; f++)
+    se_buf_printf(b, " %s%d.exr%s", name, f,
+                  f == 1 ? "" : frame_sign(p, f) < 0 ? " --sub" : " --add");
+  se_buf_printf(b, " -o %s.exr", name);
+}
+
+/* The commands that make the image (se_output.render): POV-Ray in the
+ * export's directory, then the summing step when there are frames. */
+static void render_command(const pov *p, se_buf *b, const char *pov_path,
+                           size_t dir_len, const char *name) {
+  if (dir_len > 0) {
+    char *dir = se_printf_alloc("%.*s", (int)(dir_len > 1 ? dir_len - 1 : dir_len), pov_path);
+    if (!dir) {
+      b->failed = 1;
+      return;
+    }
+    se_buf_puts(b, "cd ");
+    se_shell_word(b, dir);
+    se_buf_puts(b, " && ");
+    free(dir);
+  }
+  se_buf_printf(b, "povray %s.ini", name);
+  if (p->split) {
+    se_buf_puts(b, " && oiiotool");
+    oiiotool_args(p, b, name);
+  }
+}
+
 static void header(pov *p, const char *name) {
   const char *scene = se_base_name(p->scene->file ? p->scene->file : "scene");
   size_t fn = strlen(scene) + 2;
@@ -118,13 +149,10 @@ static void header(pov *p, const char *name) {
                   p->scene->medium.type == SH_MEDIUM_ATMOSPHERE
                       ? "Rayleigh's light and the surfaces', then Mie's, a frame per lobe"
                       : "a frame per lobe of the phase, the surfaces' light in the first");
-    for (int f = 1; f <= p->nframes; f++)
-      se_buf_printf(b, " %s%d.exr%s", name, f,
-                    f == 1 ? "" : frame_sign(p, f) < 0 ? " --sub" : " --add");
-    se_buf_printf(b, " -o %s.exr`.\n"
+    oiiotool_args(p, b, name);
+    se_buf_puts(b, "`.\n"
                      "// Linear radiance as half-float OpenEXR, one ray through each pixel "
-                     "centre.\n",
-                  name);
+                     "centre.\n");
   } else {
     se_buf_printf(b, "// Render it with `povray %s.ini` in this directory: it writes %s.exr,\n",
                   name, name);
@@ -785,6 +813,10 @@ static void ini(const pov *p, se_buf *b, const char *name, const sh_scene *s, in
   se_buf_puts(b, "; POV-Ray 3.7 settings written by scene_export: run `povray ");
   se_buf_printf(b, "%s.ini` in this directory.\n", name);
   se_buf_printf(b, "Input_File_Name=%s.pov\n", name);
+  if (nframes > 1)
+    se_buf_printf(b, "; POV-Ray writes the frames %s1.exr to %s%d.exr, not %s.exr: %s.exr is\n"
+                     "; their signed sum, made by the .pov header's oiiotool command.\n",
+                  name, name, nframes, name, name);
   se_buf_printf(b, "Output_File_Name=%s.exr\n", name);
   se_buf_puts(b, "; Linear radiance, OpenEXR (POV-Ray writes half floats).\n");
   se_buf_puts(b, "Output_File_Type=E\nOutput_Alpha=Off\n");
@@ -911,5 +943,6 @@ static sh_status se__pov_build(const sh_scene *scene, const se_options *opt,
   povb->failed |= body.failed;
   se_buf_free(&body);
   ini(&p, inib, name, scene, p.nframes);
+  render_command(&p, &out->render, pov_path, dir_len, name);
   return SH_OK;
 }

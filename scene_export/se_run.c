@@ -38,9 +38,9 @@ const se_target *se_target_find(const char *name) {
 
 sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                           const se_options *opt, const char *out_path,
-                          int strict, se_notes *notes, se_frame *frame,
+                          int strict, se_notes *notes, se_output *result,
                           sh_error *err) {
-  if (frame) memset(frame, 0, sizeof *frame);
+  if (result) memset(result, 0, sizeof *result);
   if (!scene || !target || !opt || !out_path || !notes)
     return sh_error_set(err, SH_ERR_ARG, "se_export_scene: a NULL argument");
   se_output out = {0};
@@ -61,8 +61,8 @@ sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                       "nothing written",
                       notes->count, notes->count == 1 ? "" : "s");
   if (st == SH_OK) st = se_output_write(&out, scene, err);
-  if (frame && out.has_frame) *frame = out.frame;
-  se_output_free(&out);
+  if (result) *result = out;
+  else se_output_free(&out);
   return st;
 }
 

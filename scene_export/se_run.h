@@ -40,11 +40,13 @@ const se_target *se_target_find(const char *name);
  * files. If `strict` is set and the export needs approximations, nothing
  * is written and SH_ERR_SCENE is returned, with a message counting them.
  * The approximations are left in `notes` (owned by the caller) either
- * way. If `frame` is not NULL it receives the frame the target chose
- * (se_scale.h; scale 0 for a target without one, the json target). */
+ * way. If `result` is not NULL it receives the export as built, either
+ * way too (owned by the caller: se_output_free): the files' paths, the
+ * frame the target chose (has_frame 0 for the json target) and the
+ * commands that render it (se_output.render). */
 sh_status se_export_scene(const sh_scene *scene, const se_target *target,
                           const se_options *opt, const char *out_path,
-                          int strict, se_notes *notes, se_frame *frame,
+                          int strict, se_notes *notes, se_output *result,
                           sh_error *err);
 
 /* Loads the scene file at scene_path (sh_scene_load) and exports it without

@@ -13,7 +13,7 @@ const se_target se_targets[] = {
      "several lobes: frames NAME1.exr, NAME2.exr, ..., whose signed sum is "
      "the image, e.g. oiiotool NAME1.exr NAME2.exr --add NAME3.exr --sub -o "
      "NAME.exr; the .pov's header has the command, the .ini's Frame_Signs "
-     "the signs)"},
+     "the signs; scene_export prints the commands as its `render:` line)"},
     {"blender", "py", se_blender_build,
      "OUT = DIR/NAME.py: writes NAME.py (a fixed script), its data "
      "NAME.blender.json and light maps NAME_blender_map<i>.exr; render with "

@@ -38,6 +38,22 @@ int se_is_plain_file_name(const char *name) {
   return 1;
 }
 
+void se_shell_word(se_buf *b, const char *word) {
+  int plain = word[0] && word[0] != '-';
+  for (const char *p = word; *p && plain; p++)
+    plain = plain_char((unsigned char)*p) || *p == '/';
+  if (plain) {
+    se_buf_puts(b, word);
+    return;
+  }
+  se_buf_puts(b, "'");
+  for (const char *p = word; *p; p++) {
+    if (*p == '\'') se_buf_puts(b, "'\\''");
+    else se_buf_append(b, p, 1);
+  }
+  se_buf_puts(b, "'");
+}
+
 const char *se_base_name(const char *path) {
   const char *slash = strrchr(path, '/');
   return slash ? slash + 1 : path;

@@ -32,6 +32,12 @@ int se_is_plain_file_name(const char *name);
  * files an export writes. */
 void se_plain_name(const char *in, char *out, size_t size);
 
+/* Appends `word` to b as one POSIX shell word: as it is when it holds only
+ * letters, digits, "_.+-/" and does not start with '-', else in single
+ * quotes with every quote written '\''. For the commands scene_export
+ * prints; the shell expands nothing in it. */
+void se_shell_word(se_buf *b, const char *word);
+
 /* The last path component of `path` (a pointer into it). */
 const char *se_base_name(const char *path);
 

@@ -35,6 +35,18 @@ int main(void) {
   SH_CHECK(!se_is_plain_file_name("a\"b"));
   SH_CHECK(!se_is_plain_file_name(""));
 
+  /* Shell words: plain paths as they are, the rest in single quotes. */
+  const char *words[][2] = {{"/tmp/out/s.pov", "/tmp/out/s.pov"},
+                            {"it's $(x) `y`\n", "'it'\\''s $(x) `y`\n'"},
+                            {"-o", "'-o'"},
+                            {"", "''"}};
+  for (size_t i = 0; i < sizeof words / sizeof *words; i++) {
+    se_buf w = {0};
+    se_shell_word(&w, words[i][0]);
+    SH_CHECK(w.data && !strcmp(w.data, words[i][1]));
+    se_buf_free(&w);
+  }
+
   SH_CHECK(!strcmp(se_base_name("/a/b/c.pov"), "c.pov"));
   char *r = se_replace_extension("/a.b/c.pov", ".ini");
   SH_CHECK(r && !strcmp(r, "/a.b/c.ini"));
