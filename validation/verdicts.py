@@ -161,9 +161,13 @@ CAUSES = [
     # A larger bias the sweep's two points give Cycles there (7.5% and
     # 1.7% at 37178c5) is not resolved beyond that: at 24x18 two seeds
     # differ by more (validation.peers; docs/validation.md).
+    # From space, at 512 spp, Cycles is 1.45% from the reference (mean
+    # relative) against 1.37% between two seeds: about 1% per pixel beyond
+    # the phases' 0.5%, unexplained (docs/validation.md).
     (("cycles",), "medium:atmosphere",
      "the phases' lobes cost 2.5% on the sunset and 0.5% from space "
-     "(validation.atmo_phase_bias); more is not resolved under the noise"),
+     "(validation.atmo_phase_bias); the rest not explained (from space about "
+     "1%; on the sunset not resolved under the noise)"),
     # gl_shafts' atmosphere: the optical depth from a table interpolated in
     # log tau (largest transmittance error 0.45%, gs_atmo_table_test) and
     # 3-point Gauss-Legendre per plane (docs/gl_shafts.md, "The atmosphere").
