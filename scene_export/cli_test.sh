@@ -286,6 +286,33 @@ if command -v blender >/dev/null; then
   check "the script's --width 0" 2 $?
   message_has "the script's --width 0" "$dir/err" "scene_export script: error: --width: expected an integer from 1 to 65536, found '0'"
   [ -e "$sc/f.exr" ] && { echo "FAIL: the script's refused --width wrote an image"; fail=1; }
+  # --samples as the C tools word a bad value, within Cycles' own bounds.
+  for v in 0 16777217 -1 2.5; do
+    blender -b --factory-startup -P "$sc/f.py" -- --out "$sc/f.exr" --samples "$v" >"$dir/err" 2>&1
+    check "the script's --samples $v" 2 $?
+    message_has "the script's --samples $v" "$dir/err" "scene_export script: error: --samples: expected an integer from 1 to 16777216, found '$v'"
+  done
+  # --out: an OpenEXR name (the image is EXR whatever it is called), in a
+  # directory that exists and takes a file, checked before the scene is
+  # built (a script without its data says so about --out, not the data).
+  blender -b --factory-startup -P "$sc/f.py" -- --out "$sc/f.png" >"$dir/err" 2>&1
+  check "the script's --out f.png" 2 $?
+  message_has "the script's --out f.png" "$dir/err" "scene_export script: error: --out '$sc/f.png' must end in .exr"
+  cp "$sc/f.py" "$sc/lonely.py"
+  blender -b --factory-startup -P "$sc/lonely.py" -- --out "$sc/nowhere/f.exr" >"$dir/err" 2>&1
+  check "the script's --out in a missing directory" 2 $?
+  message_has "the script's --out in a missing directory" "$dir/err" "scene_export script: error: --out: directory '$sc/nowhere' does not exist"
+  blender -b --factory-startup -P "$sc/f.py" -- --out /proc/f.exr >"$dir/err" 2>&1
+  check "the script's --out in /proc" 2 $?
+  message_has "the script's --out in /proc" "$dir/err" "scene_export script: error: --out: '/proc' is not a directory this user can write to"
+  grep -q "probe\|tmp" "$dir/err" && { echo "FAIL: a temporary name in: $(cat "$dir/err")"; fail=1; }
+  ls -A "$sc" | grep -q '\.png$\|\.exr$\|probe\|tmp' && { echo "FAIL: refused renders left: $(ls -A "$sc")"; fail=1; }
+  blender -b --factory-startup -P "$sc/f.py" -- --help >"$dir/err" 2>&1
+  check "the script's --help" 0 $?
+  for t in "--engine cycles|eevee" "(default: cycles)" "32-bit float OpenEXR" "exit status: 0 success" \
+           "2 bad arguments or data" "1 to 16777216"; do
+    message_has "the script's --help" "$dir/err" "$t"
+  done
 fi
 rm -f "$sc"/*
 # A spot narrower than Blender's 1-degree spot_size (issue 11, a laser): a

@@ -43,6 +43,37 @@ from mathutils import Matrix
 USAGE = ("usage: blender -b -P NAME.py -- --engine cycles|eevee --out IMG.exr "
          "[--samples N] [--seed S] [--width W] [--height H] [--one-pass]")
 
+# The bounds of --samples and --seed: Cycles' own (its samples property
+# holds 1 to 2^24, its seed 0 to 2^31 - 1; EEVEE's samples as many).
+SAMPLES_MAX = 16777216
+SEED_MAX = 2147483647
+
+HELP = USAGE + """
+
+Renders the scene exported next to this script (NAME.blender.json) into
+IMG.exr: linear radiance as 32-bit float OpenEXR, one sample position per
+pixel centre.
+
+  --engine cycles|eevee  the renderer (default: cycles); EEVEE needs a
+                         display: run it under xvfb-run
+  --out IMG.exr          the image, required; it must end in .exr and its
+                         directory must exist and be writable (checked
+                         before the scene is built)
+  --samples N            samples per pixel, 1 to %d (default: the
+                         export's, --quality draft 64 for Cycles and 16 for
+                         EEVEE)
+  --seed S               Cycles' random seed, 0 to %d (default: the
+                         export's)
+  --width W, --height H  the image size, 1 to 65536 (default: the export's;
+                         one alone keeps the aspect)
+  --one-pass             Cycles: render a ray-marched medium whose
+                         coefficients differ between colour channels in one
+                         pass, as Cycles does (default: once per channel,
+                         composed)
+
+exit status: 0 success (the image written), 1 building or rendering
+failed, 2 bad arguments or data (nothing written).""" % (SAMPLES_MAX, SEED_MAX)
+
 
 class DataError(Exception):
     """The arguments or the JSON data are not what the exporter writes."""
@@ -66,7 +97,7 @@ def parse_args(argv):
     while i < len(args):
         key = args[i]
         if key in ("-h", "--help"):
-            print(USAGE)
+            print(HELP)
             sys.exit(0)
         if key == "--one-pass":
             opts["one_pass"] = True
@@ -81,6 +112,7 @@ def parse_args(argv):
                 raise DataError("--engine expects cycles or eevee, got %r" % value)
             opts["engine"] = value
         elif key == "--out":
+            check_out(value)
             opts["out"] = os.path.abspath(value)
         elif key in ("--width", "--height"):
             # As scene_export and the renderers word it (core/sh_cli.h).
@@ -89,17 +121,35 @@ def parse_args(argv):
                                 % (key, value))
             opts[key[2:]] = int(value)
         else:
-            try:
-                number = int(value)
-            except ValueError:
-                number = -1
-            if number < (1 if key == "--samples" else 0) or number > 2**31 - 1:
-                raise DataError("%s expects a non-negative integer, got %r" % (key, value))
-            opts[key[2:]] = number
+            low, high = (1, SAMPLES_MAX) if key == "--samples" else (0, SEED_MAX)
+            if not (value.isascii() and value.isdigit()) or not low <= int(value) <= high:
+                raise DataError("%s: expected an integer from %d to %d, found '%s'"
+                                % (key, low, high, value))
+            opts[key[2:]] = int(value)
         i += 2
     if not opts["out"]:
         raise DataError("--out IMG.exr is required; " + USAGE)
     return opts
+
+
+def check_out(path):
+    """--out checked before any work, worded as the C tools' -o
+    (core/sh_cli.c): it ends in .exr, and its directory exists and takes a
+    new file (a file made and removed there: permissions alone do not say,
+    for root or a read-only mount). DataError otherwise."""
+    if not path.lower().endswith(".exr") or os.path.basename(path) == ".exr":
+        raise DataError("--out '%s' must end in .exr (the image is 32-bit float OpenEXR)"
+                        % path)
+    directory = os.path.dirname(path) or "."
+    if not os.path.exists(directory):
+        raise DataError("--out: directory '%s' does not exist" % directory)
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".shafts-probe-", dir=directory)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError:
+        raise DataError("--out: '%s' is not a directory this user can write to"
+                        % directory) from None
 
 
 def numbers(value, count=None, what="value"):
