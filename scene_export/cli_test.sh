@@ -77,6 +77,9 @@ grep -q '^Final_Frame=3$' "$dir/cs5_out.ini" && grep -q '^; Frame_Signs=+ - +$' 
 message_has "wrote line" "$dir/err" "scene_export: wrote $dir/cs5_out.pov, $dir/cs5_out.ini"
 render="cd $dir && povray cs5_out.ini && oiiotool cs5_out1.exr cs5_out2.exr --sub cs5_out3.exr --add -o cs5_out.exr"
 message_has "render line" "$dir/err" "scene_export: render: $render"
+# The .pov's header lists the approximations as written (printable ASCII
+# kept in a comment).
+message_has "the header's approximations" "$dir/cs5_out.pov" "// - medium: POV-Ray has no cornette_shanks phase; it is rendered as 3 Henyey-Greenstein lobes fitted to it, g = 0.5048 (weight 1.521)"
 message_has "the .ini's note" "$dir/cs5_out.ini" "; POV-Ray writes the frames cs5_out1.exr to cs5_out3.exr, not cs5_out.exr: cs5_out.exr is"
 if command -v povray >/dev/null && command -v oiiotool >/dev/null; then
   (eval "$(sed -n 's/^scene_export: render: //p' "$dir/err")") >"$dir/render.log" 2>&1
@@ -380,9 +383,13 @@ if command -v povray >/dev/null; then
 else
   echo "FAIL: povray is not installed"; fail=1
 fi
-# User text appears only in comments.
+# User text appears only in comments, on their own lines, with no block
+# comment opened or closed.
 grep -v '^ *//' "$pov/evil.pov" | grep -q -i 'import\|touch\|pwned' \
   && { echo "FAIL: user text outside comments in the .pov"; fail=1; }
+grep -q '/\*\|\*/' "$pov/evil.pov" && { echo "FAIL: a block comment in the .pov"; fail=1; }
+grep -qF "// materials[0]: glass\"\\___import__('os').system('touch pwned')" "$pov/evil.pov" \
+  || { echo "FAIL: the hostile name's comment: $(grep 'materials\[0\]' "$pov/evil.pov")"; fail=1; }
 
 blend=$dir/"bl\"end \\ dir"
 mkdir "$blend"

@@ -15,7 +15,8 @@ void se_comment_text(const char *in, char *out, size_t size) {
   size_t n = 0, len = strlen(in);
   for (size_t i = 0; i < len && n + 1 < size; i++) {
     int c = (unsigned char)in[i];
-    out[n++] = (char)(plain_char(c) || c == ' ' ? c : '_');
+    int block = c == '*' && ((i > 0 && in[i - 1] == '/') || in[i + 1] == '/');
+    out[n++] = (char)(c >= 0x20 && c < 0x7f && !block ? c : '_');
   }
   out[n] = '\0';
   if (len > n && size >= 4) memcpy(out + size - 4, "...", 4);

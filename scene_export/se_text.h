@@ -16,9 +16,15 @@ extern "C" {
 #endif
 
 /* Writes into out (room for size bytes, size >= 4) a copy of `in` that is
- * safe inside a one-line comment of any of the target languages: letters,
- * digits, space and "_.+-" are kept, every other byte becomes '_', and the
- * result is cut to size - 1 bytes with "..." marking a cut. */
+ * safe inside a one-line comment of any of the target languages (POV-Ray's
+ * "//", the .ini's ";", Python's "#") and stays readable: printable ASCII
+ * is kept, so "medium.mie.phase: POV-Ray has no cornette_shanks phase (it
+ * is ...)" reads as written. What could end the comment or break the file
+ * becomes '_': every control byte (line feed, carriage return, tab, DEL:
+ * nothing after them reaches a parser), every byte of 128 or more (no
+ * encoding to misread, no Unicode line separator) and the '*' of a "/x" or
+ * "x/" pair (no block comment opened or closed). The result is cut to
+ * size - 1 bytes with "..." marking a cut. */
 void se_comment_text(const char *in, char *out, size_t size);
 
 /* True if `name` (a file name without directories) is non-empty, consists
