@@ -38,6 +38,7 @@ import tempfile
 import time
 from pathlib import Path
 
+from . import phases
 from .metrics import compare
 from .renderers import pov_frames
 
@@ -105,11 +106,9 @@ def cycles_image(tools, scene, work, label, samples, seed, step_factor):
 def phase_rows():
     """The Cornette-Shanks phase against its Henyey-Greenstein lobe."""
     def cs(g, c):
-        return 3 / (8 * math.pi) * (1 - g * g) / (2 + g * g) * (1 + c * c) / (
-            1 + g * g - 2 * g * c) ** 1.5
+        return phases.value({"type": "cornette_shanks", "g": g}, c)
 
-    def hg(g, c):
-        return (1 - g * g) / (4 * math.pi) / (1 + g * g - 2 * g * c) ** 1.5
+    hg = phases.hg
 
     rows = []
     for g in (0.3, 0.5, 0.7, 0.76, 0.8, 0.9):
