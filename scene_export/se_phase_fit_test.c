@@ -65,6 +65,16 @@ static void rayleigh_errors(const se_hg_mixture *m, int n, double *worst, double
   *rms = sqrt(sq / (n + 1));
 }
 
+/* Prints a row of the Rayleigh table for the mixture m of k lobes and
+ * gives its largest and RMS relative errors. */
+static void rayleigh_row(const char *label, int k, const se_hg_mixture *m, double *worst,
+                         double *rms) {
+  rayleigh_errors(m, 4000, worst, rms);
+  printf("| %s | %d |", label, k);
+  for (int l = 0; l < m->n; l++) printf(" (%+.4f, %+.5f)", m->g[l], m->w[l]);
+  printf(" | %.4f | %.4f |\n", *worst, *rms);
+}
+
 /* Rayleigh's phase by non-negative lobes (docs/scene_export.md, "Phase
  * lobes"): the fit (se_phase_fit_cs at g = 0, whatever K and with weights
  * free to differ) is one pair +-g of equal weight, and no mixture of an
@@ -78,10 +88,7 @@ static void rayleigh_table(void) {
   for (int k = 1; k <= SE_PHASE_FIT_MAX_LOBES; k++) {
     se_hg_mixture m;
     SH_CHECK(se_phase_fit_cs(0.0, k, &m));
-    rayleigh_errors(&m, 4000, &worst, &rms);
-    printf("| chi-square fit | %d |", k);
-    for (int l = 0; l < m.n; l++) printf(" (%+.4f, %.5f)", m.g[l], m.w[l]);
-    printf(" | %.4f | %.4f |\n", worst, rms);
+    rayleigh_row("chi-square fit", k, &m, &worst, &rms);
     if (k == 1) {
       SH_CHECK(m.n == 1 && fabs(m.g[0]) < 1e-3); /* isotropic: 1/3 and 22% */
       SH_CHECK(fabs(worst - 1.0 / 3.0) < 0.002 && fabs(rms - 0.2195) < 0.002);
@@ -98,10 +105,7 @@ static void rayleigh_table(void) {
   for (int k = 2; k <= SE_PHASE_FIT_MAX_LOBES; k++) {
     se_hg_mixture m;
     SH_CHECK(se_phase_fit_cs_signed(0.0, k, &m));
-    rayleigh_errors(&m, 4000, &worst, &rms);
-    printf("| signed fit | %d |", k);
-    for (int l = 0; l < m.n; l++) printf(" (%+.4f, %+.5f)", m.g[l], m.w[l]);
-    printf(" | %.4f | %.4f |\n", worst, rms);
+    rayleigh_row("signed fit", k, &m, &worst, &rms);
     SH_CHECK(worst < signed_max[k - 2] + 0.002);
   }
   /* The lobes Cycles' atmosphere and media get (two of equal weight). */
