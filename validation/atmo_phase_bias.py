@@ -37,15 +37,25 @@ import sys
 import tempfile
 from pathlib import Path
 
-from . import phases
 from .scenes import pixel_direction
 
 ROOT = Path(__file__).resolve().parent.parent
 LUMA = (0.2126, 0.7152, 0.0722)
 
 
+def hg(g, mu):
+    """The normalised Henyey-Greenstein phase."""
+    d = 1.0 + g * g - 2.0 * g * mu
+    return (1.0 - g * g) / (4.0 * math.pi * d * math.sqrt(d))
+
+
 def rayleigh(mu):
-    return phases.value({"type": "rayleigh"}, mu)
+    return 3.0 / (16.0 * math.pi) * (1.0 + mu * mu)
+
+
+def cornette_shanks(g, mu):
+    return (3.0 / (8.0 * math.pi) * (1.0 - g * g) / (2.0 + g * g) * (1.0 + mu * mu)
+            / (1.0 + g * g - 2.0 * g * mu) ** 1.5)
 
 
 def read_pixels(path):
@@ -141,10 +151,17 @@ def main(argv=None):
     mie_phase = (mie or {}).get("phase", {"type": "isotropic"})
 
     def mie_p(c):
-        return phases.value(mie_phase, c)
+        t = mie_phase["type"]
+        if t == "cornette_shanks":
+            return cornette_shanks(mie_phase["g"], c)
+        if t == "henyey_greenstein":
+            return hg(mie_phase["g"], c)
+        if t == "isotropic":
+            return 1.0 / (4.0 * math.pi)
+        sys.exit("atmo_phase_bias: Mie phase %s not handled" % t)
 
     def mix(part, c):
-        return sum(w * phases.hg(g, c) for g, w in parts.get(part, []))
+        return sum(w * hg(g, c) for g, w in parts.get(part, []))
 
     lum = {k: sum(LUMA[i] * v[i] for i in range(3)) for k, v in la.items()}
     lit = max(lum.values()) * 0.01

@@ -38,7 +38,6 @@ import tempfile
 import time
 from pathlib import Path
 
-from . import phases
 from .metrics import compare
 from .renderers import pov_frames
 
@@ -106,9 +105,11 @@ def cycles_image(tools, scene, work, label, samples, seed, step_factor):
 def phase_rows():
     """The Cornette-Shanks phase against its Henyey-Greenstein lobe."""
     def cs(g, c):
-        return phases.value({"type": "cornette_shanks", "g": g}, c)
+        return 3 / (8 * math.pi) * (1 - g * g) / (2 + g * g) * (1 + c * c) / (
+            1 + g * g - 2 * g * c) ** 1.5
 
-    hg = phases.hg
+    def hg(g, c):
+        return (1 - g * g) / (4 * math.pi) / (1 + g * g - 2 * g * c) ** 1.5
 
     rows = []
     for g in (0.3, 0.5, 0.7, 0.76, 0.8, 0.9):

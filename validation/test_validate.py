@@ -14,7 +14,7 @@ import unittest
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-from . import atmo_phase_bias, phases, renderers, report, slurm
+from . import atmo_phase_bias, renderers, report, slurm
 from .hard import bounds as hard_bounds
 from .hard import cases as hard_cases
 from .hard import runner as hard_runner
@@ -579,15 +579,14 @@ class AtmoPhaseBiasTest(unittest.TestCase):
 
     def test_phases(self):
         n = 4000
-        for f in (atmo_phase_bias.rayleigh, lambda c: phases.hg(0.6, c),
-                  lambda c: phases.value({"type": "cornette_shanks", "g": 0.5}, c)):
+        for f in (atmo_phase_bias.rayleigh, lambda c: atmo_phase_bias.hg(0.6, c),
+                  lambda c: atmo_phase_bias.cornette_shanks(0.5, c)):
             s = f(-1.0) + f(1.0) + sum((4 if j % 2 else 2) * f(-1.0 + 2.0 * j / n)
                                        for j in range(1, n))
             self.assertAlmostEqual(2 * math.pi * s * (2.0 / n) / 3.0, 1.0, places=6)
         for c in (-1.0, 0.3, 1.0):
             self.assertAlmostEqual(atmo_phase_bias.rayleigh(c),
-                                   phases.value({"type": "cornette_shanks", "g": 0.0}, c),
-                                   places=12)
+                                   atmo_phase_bias.cornette_shanks(0.0, c), places=12)
 
     def test_pixel_mu(self):
         cam = {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_y_deg": 60}
