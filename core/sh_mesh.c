@@ -76,6 +76,9 @@ typedef struct confined_fs {
   int nnamed, failed, mesh_seen, overread;
   unsigned long long budget, read; /* bytes */
   struct fs_file *open;            /* the files assimp has not closed */
+  int obj;                    /* assimp's OBJ importer may read the mesh */
+  int mesh_library_checked;   /* the mesh, opened as its own library */
+  sh_error library;           /* a material library refused (sh_obj_check.h) */
 } confined_fs;
 
 /* One open file: assimp's handle first, so that its callbacks' pointer is
@@ -84,7 +87,30 @@ typedef struct fs_file {
   struct aiFile ai;
   confined_fs *fs;
   struct fs_file *next; /* in fs->open */
+  int is_mesh;
 } fs_file;
+
+/* Whether assimp holds the mesh open. */
+static int fs_mesh_open(const confined_fs *fs) {
+  for (const fs_file *f = fs->open; f; f = f->next)
+    if (f->is_mesh) return 1;
+  return 0;
+}
+
+/* Checks the material library open as `fp` (sh__mtl_check), `size` bytes,
+ * and rewinds it: 0 if refused (the error is kept in fs->library). */
+static int fs_library_ok(confined_fs *fs, const char *name, FILE *fp, long long size) {
+  char *data = size >= 0 && (unsigned long long)size < SIZE_MAX ? malloc((size_t)size + 1) : NULL;
+  if (!data) {
+    fs->failed = 1;
+    return 0;
+  }
+  size_t got = fread(data, 1, (size_t)size, fp);
+  int ok = !ferror(fp) && fseek(fp, 0, SEEK_SET) == 0 &&
+           sh__mtl_check(fs->mesh, name, data, got, &fs->library) == SH_OK;
+  free(data);
+  return ok;
+}
 
 static size_t fs_read(struct aiFile *f, char *buf, size_t size, size_t n) {
   confined_fs *fs = ((fs_file *)(void *)f)->fs;
@@ -129,7 +155,8 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
   confined_fs *fs = (confined_fs *)(void *)io->UserData;
   if (!name || strchr(mode, 'w') || strchr(mode, 'a') || strchr(mode, '+'))
     return NULL;
-  if (fs->overread) return NULL; /* the load is refused: no more work */
+  if (fs->overread || fs->library.status != SH_OK)
+    return NULL; /* the load is refused: no more work */
   /* Outside the tree is refused before missing is said: a missing
    * "../x.bin" is placed by its names (sh__confined_name). */
   char *resolved = NULL;
@@ -178,6 +205,17 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
     fclose(fp);
     return NULL;
   }
+  /* In an OBJ load, every other file is a material library, and so is
+   * the mesh opened again while assimp reads it (a mesh naming itself):
+   * checked once each before assimp reads it. */
+  if (fs->obj && (!is_mesh || fs_mesh_open(fs)) &&
+      (is_mesh ? !fs->mesh_library_checked : first)) {
+    fs->mesh_library_checked |= is_mesh;
+    if (!fs_library_ok(fs, name, fp, (long long)sb.st_size)) {
+      fclose(fp);
+      return NULL;
+    }
+  }
   if (first) fs->budget += SH__READ_TIMES * (unsigned long long)sb.st_size;
   fs_file *ff = calloc(1, sizeof *ff);
   if (!ff) {
@@ -185,6 +223,7 @@ static struct aiFile *fs_open(struct aiFileIO *io, const char *name,
     return NULL;
   }
   ff->fs = fs;
+  ff->is_mesh = is_mesh;
   ff->next = fs->open;
   fs->open = ff;
   struct aiFile *f = &ff->ai;
@@ -338,10 +377,11 @@ static sh_status load_own(const char *path, const char *root, long long size,
  * their extensions, or, for OBJ, any extension assimp does not claim
  * (then its OBJ importer may take the file by its first lines). */
 static sh_status check_before_assimp(const char *path, const char *root, long long size,
-                                     sh_error *err) {
+                                     int *obj_candidate, sh_error *err) {
   char ext[8];
   sh_file_extension(path, ext, sizeof ext);
   int gltf = sh__gltf_candidate(path), obj = !strcmp(ext, "obj") || !assimp_claims(path);
+  *obj_candidate = obj;
   if (!gltf && !obj) return SH_OK;
   char *data;
   size_t got;
@@ -381,7 +421,8 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   rs = load_own(path, root, size, mesh, &handled, err);
   if (handled || rs != SH_OK)
     return rs;
-  if ((rs = check_before_assimp(path, root, size, err)) != SH_OK)
+  int obj;
+  if ((rs = check_before_assimp(path, root, size, &obj, err)) != SH_OK)
     return rs;
 
   const sh__assimp *ai = sh__assimp_get(path, err);
@@ -399,6 +440,8 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
   fs.root = root ? root : own_root;
   fs.budget = SH__READ_SLACK;
   fs.mesh = path;
+  fs.obj = obj;
+  sh_error_init(&fs.library);
   const struct aiScene *scene = ai->import_file_ex(
       path,
       /* ValidateDataStructure first: Debian's assimp is built with its
@@ -410,6 +453,7 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
           aiProcess_SortByPType,
       &fs.io);
   fs_close_all(&fs);
+  if (fs.failed || fs.refused[0]) sh_error_clear(&fs.library);
   if (fs.failed) {
     if (scene) ai->release_import(scene);
     free_named(fs.named, fs.nnamed);
@@ -429,6 +473,14 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
         path, fs.refused, fs.root);
     free(own_root);
     return st;
+  }
+  if (fs.library.status != SH_OK) {
+    /* Refused whether or not assimp went on without the library. */
+    free_named(fs.named, fs.nnamed);
+    if (scene) ai->release_import(scene);
+    free(own_root);
+    sh_error_move(err, &fs.library);
+    return SH_ERR_MESH;
   }
   if (fs.overread) {
     free_named(fs.named, fs.nnamed);

@@ -31,7 +31,8 @@ void sh_mesh_free(sh_mesh *mesh);
  * bytes are "off" if assimp knows no other format by its extension) by
  * sh_off.h's (assimp's allocates what its header declares); a glTF file
  * is checked by sh_gltf_check.h before assimp reads it, an OBJ file's
- * polygons by sh_obj_check.h. assimp may read the files of a load 16 times
+ * polygons and its material libraries (a texture map before any newmtl,
+ * which crashed assimp) by sh_obj_check.h. assimp may read the files of a load 16 times
  * over their size (plus 1 MiB) at most: a file named again and again (one
  * material library on many lines) is refused. Every file the load opens (the mesh, an OBJ's material
  * library, a glTF's buffers) must resolve inside the directory `root` (NULL:

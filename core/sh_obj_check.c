@@ -3,6 +3,7 @@
 
 #include <stdio.h>
 #include <string.h>
+#include <strings.h>
 
 #include "sh_mesh_reader.h"
 
@@ -41,6 +42,46 @@ sh_status sh__obj_check(const char *path, const char *data, size_t size,
       if (err) err->line = (int)first;
       return SH_ERR_MESH;
     }
+  }
+  return SH_OK;
+}
+
+/* Whether the statement at `s` (of `n` bytes to its line's end) is `word`:
+ * its first character as given (assimp dispatches on it), the rest in any
+ * case (assimp compares them so). */
+static int mtl_is(const char *s, size_t n, const char *word) {
+  size_t k = strlen(word);
+  return n >= k && s[0] == word[0] && strncasecmp(s + 1, word + 1, k - 1) == 0;
+}
+
+/* assimp's line ends (ObjTools.h's IsLineEnd). */
+static int mtl_line_end(char c) { return c == '\n' || c == '\r' || c == '\f' || c == '\0'; }
+
+sh_status sh__mtl_check(const char *mesh, const char *path, const char *data,
+                        size_t size, sh_error *err) {
+  const char *p = data, *end = data + size;
+  long line = 1;
+  while (p < end) {
+    while (p < end && (*p == ' ' || *p == '\t')) p++;
+    const char *e = p;
+    while (e < end && !mtl_line_end(*e)) e++;
+    size_t n = (size_t)(e - p);
+    if (n >= 2 && (p[0] == 'n' || p[0] == 'N') && p[1] == 'e') return SH_OK; /* newmtl */
+    if (n && (p[0] == 'a' || mtl_is(p, n, "map_") || mtl_is(p, n, "bump") ||
+              mtl_is(p, n, "disp") || mtl_is(p, n, "norm") || mtl_is(p, n, "Norm"))) {
+      sh_error_set(err, SH_ERR_MESH,
+                   "cannot load mesh '%s': its material library '%s', line %ld: %s "
+                   "before the library's first newmtl (it belongs to a material, and "
+                   "assimp's reader would write it to none)",
+                   mesh, path, line,
+                   p[0] == 'a' ? "an 'a' statement (anisotropy)" : "a texture map");
+      sh_error_set_file(err, path);
+      if (err) err->line = (int)line;
+      return SH_ERR_MESH;
+    }
+    if (e == end) break;
+    if (*e == '\n') line++;
+    p = e + 1;
   }
   return SH_OK;
 }

@@ -7,7 +7,11 @@
  * load. A file naming itself as its material library on 4900 lines
  * (fuzz/known/obj_mtllib_repeat), which assimp parsed 4900 times, is
  * refused by sh_mesh.c's budget of reads; one library named once, or
- * twice, still loads. */
+ * twice, still loads. A texture map before a library's first newmtl,
+ * which crashed assimp's material reader (fuzz/known/mtl_no_material: a
+ * mesh naming itself as its library), is refused at its line, in a
+ * library of its own, in the fallback NAME.mtl and after \r line ends;
+ * the same statements after newmtl load. */
 #include "sh_mesh_test_util.h"
 
 #include "sh_obj_check.h"
@@ -26,6 +30,28 @@ static char *polygon(int n, int wrap) {
   }
   snprintf(text + at, cap - at, "\n");
   return text;
+}
+
+/* An OBJ named after `library` (its .mtl replaced by .obj), whose lines
+ * `head` come before a triangle, is refused for the library's line `line`;
+ * `what` says which case. */
+static void expect_library_error(const char *library, const char *head, int line,
+                                 const char *what) {
+  char obj[64], text[256];
+  snprintf(obj, sizeof obj, "%.*s.obj", (int)(strlen(library) - 4), library);
+  snprintf(text, sizeof text, "%sv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", head);
+  sh_mesh m;
+  sh_error err = SH_ERROR_INIT;
+  sh_status s = sh_mesh_load(write_text(obj, text), NULL, &m, &err);
+  int ok = s == SH_ERR_MESH && strstr(err.message, obj) && strstr(err.message, library) &&
+           strstr(err.message, "before the library's first newmtl") && err.line == line &&
+           strstr(err.file, library);
+  if (!ok)
+    fprintf(stderr, "%s (%s): status %d, '%s' (%s line %d); want the library's line %d\n",
+            obj, what, s, s ? err.message : "", s ? err.file : "", s ? err.line : 0, line);
+  SH_CHECK(ok);
+  SH_CHECK(m.positions == NULL && m.ntris == 0);
+  sh_error_clear(&err);
 }
 
 int main(void) {
@@ -73,6 +99,28 @@ int main(void) {
   write_text("lib.mtl", "newmtl grey\nKd 0.5 0.5 0.5\n");
   expect_tris("twice.obj", "mtllib lib.mtl\nmtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
               "usemtl grey\nf 1 2 3\n", 1, 3);
+  /* Material statements before any material (sh__mtl_check). */
+  n = read_known("mtl_no_material", buf, sizeof buf);
+  SH_CHECK(n > 1);
+  if (n > 1) expect_error_at("m.obj", buf + 1, n - 1, 1, "a texture map before the library's first newmtl");
+  static const char *const early[] = {"map_Kd tex.png", "  map_Ke", "bump b.png", "disp d.png",
+                                      "norm n.png", "Norm n.png", "map_Kd -bm 1 x.png",
+                                      "a 0.5"};
+  for (size_t i = 0; i < sizeof early / sizeof *early; i++) {
+    char lib[128];
+    snprintf(lib, sizeof lib, "# a comment\n%s\nnewmtl grey\n", early[i]);
+    write_text("early.mtl", lib);
+    expect_library_error("early.mtl", "mtllib early.mtl\n", 2, early[i]);
+  }
+  write_text("cr.mtl", "# a comment\rmap_Kd tex.png\rnewmtl grey\r");
+  expect_library_error("cr.mtl", "mtllib cr.mtl\n", 1, "\\r line ends");
+  /* assimp opens NAME.mtl when the library named is missing. */
+  write_text("fallback.mtl", "map_Ks s.png\n");
+  expect_library_error("fallback.mtl", "mtllib missing.mtl\n", 1, "the fallback library");
+  write_text("late.mtl", "# a comment\nnewmtl grey\nKd 0.5 0.5 0.5\nmap_Kd -bm 1 tex.png\n"
+                         "bump b.png\ndisp d.png\nnorm n.png\na 0.5\n"
+                         "newmtl red\nmap_Ke e.png\n");
+  expect_tris("late.obj", "mtllib late.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n", 1, 3);
   expect_tris("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n 3 4\n", 2, 4);
   SH_TEST_DONE();
 }
