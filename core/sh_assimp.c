@@ -27,13 +27,15 @@ static void sh__assimp_load(void) {
   *(void **)&sh__assimp_fns.import_file_ex = dlsym(h, "aiImportFileEx");
   *(void **)&sh__assimp_fns.get_error_string = dlsym(h, "aiGetErrorString");
   *(void **)&sh__assimp_fns.release_import = dlsym(h, "aiReleaseImport");
-  *(void **)&sh__assimp_fns.is_extension_supported =
-      dlsym(h, "aiIsExtensionSupported");
+  *(void **)&sh__assimp_fns.import_format_count = dlsym(h, "aiGetImportFormatCount");
+  *(void **)&sh__assimp_fns.import_format_description =
+      dlsym(h, "aiGetImportFormatDescription");
   if (!sh__assimp_fns.import_file_ex || !sh__assimp_fns.get_error_string ||
-      !sh__assimp_fns.release_import || !sh__assimp_fns.is_extension_supported) {
+      !sh__assimp_fns.release_import || !sh__assimp_fns.import_format_count ||
+      !sh__assimp_fns.import_format_description) {
     snprintf(sh__assimp_why, sizeof sh__assimp_why,
-             "it lacks aiImportFileEx, aiGetErrorString, aiReleaseImport or "
-             "aiIsExtensionSupported");
+             "it lacks aiImportFileEx, aiGetErrorString, aiReleaseImport, "
+             "aiGetImportFormatCount or aiGetImportFormatDescription");
     return;
   }
   sh__assimp_ok = 1;

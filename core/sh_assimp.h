@@ -15,14 +15,15 @@
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 
-/* The four functions sh_mesh.c calls, with assimp's signatures. */
+/* The five functions sh_mesh.c calls, with assimp's signatures. */
 typedef struct sh__assimp {
   const struct aiScene *(*import_file_ex)(const char *file, unsigned flags,
                                           struct aiFileIO *fs);
   const char *(*get_error_string)(void);
   void (*release_import)(const struct aiScene *scene);
-  /* Whether an importer claims the extension (".obj": with its dot). */
-  aiBool (*is_extension_supported)(const char *extension);
+  /* The importers, and each one's description (its mFileExtensions). */
+  size_t (*import_format_count)(void);
+  const struct aiImporterDesc *(*import_format_description)(size_t index);
 } sh__assimp;
 
 /* Loads assimp on first use (thread-safe) and returns its functions, or

@@ -29,9 +29,18 @@
 
 #include "sh_error.h"
 
-/* Whether assimp's glTF importers could read the file `path`: its
- * extension is gltf or glb (any case) or it has none. */
+/* Whether assimp's glTF importers could read the file `path` by its name:
+ * its extension is gltf or glb (any case) or it has none. (sh_mesh.c
+ * checks, besides, every file whose importer assimp picks by its bytes.) */
 int sh__gltf_candidate(const char *path);
+
+/* Whether the `size` bytes `data` are what sh__gltf_check parses: JSON
+ * (its first non-blank byte is '{') or a binary glTF whose JSON chunk lies
+ * in the file. Such a file that passed the check is valid JSON, none of
+ * whose lines can begin with an OBJ statement (JSON's strings hold no line
+ * ends), so assimp's OBJ importer, if it took the file after the glTF
+ * importers refused it, would open no material library. */
+int sh__gltf_taken(const char *data, size_t size);
 
 /* Checks the glTF file `path`, whose `size` bytes are `data`: SH_OK, or
  * SH_ERR_MESH naming the file, with the line, column and key path of the

@@ -4,7 +4,8 @@
  * exponentially (fuzz/known/gltf_*,
  * the harness's first byte dropped), and their kind, each refused at once
  * at the JSON's line, column and key path; valid files, a sparse accessor
- * among them, still load. */
+ * among them, still load, also with a buffer file whose bytes look like a
+ * material library's statements. */
 #include "sh_mesh_test_util.h"
 
 /* A triangle: its buffer (three positions, three 16-bit indices, padding)
@@ -159,6 +160,31 @@ int main(void) {
     SH_CHECK(s == SH_ERR_MESH && err.line == 2 && strstr(err.message, "line 2"));
     if (s != SH_ERR_MESH || err.line != 2) fprintf(stderr, "syntax.gltf: %s\n", err.message);
     sh_error_clear(&err);
+  }
+  /* A glTF whose buffer is a file of its own holding lines an MTL check
+   * refuses, and whose JSON holds a token of assimp's OBJ importer ("I/O
+   * v3": "o "), as Blender's exporter writes: its buffer is no material
+   * library, so it loads (named .gltf, which two importers list, so that
+   * assimp picks the importer by the bytes). */
+  {
+    unsigned char bin[64];
+    const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const unsigned short idx[4] = {0, 1, 2, 0};
+    static const char lines[] = "\nmap_Kd x.png\na 0.5\n";
+    memcpy(bin, pos, sizeof pos);
+    memcpy(bin + 36, idx, sizeof idx);
+    memcpy(bin + 44, lines, sizeof lines - 1);
+    size_t nbin = 44 + sizeof lines - 1;
+    write_bytes("tri.bin", bin, nbin);
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"generator\":\"Khronos glTF Blender I/O v3.4.50\",\"version\":\"2.0\"},"
+             "\"buffers\":[{\"uri\":\"tri.bin\",\"byteLength\":%zu}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},"
+             "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],\"accessors\":[%s},%s"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
+             nbin, POSITIONS, REST);
+    expect_tris("external.gltf", json, 1, 3);
   }
   SH_TEST_DONE();
 }

@@ -7,6 +7,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -14,6 +15,7 @@
 #include <locale.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -271,31 +273,49 @@ static char *dir_of(const char *path) {
   return d;
 }
 
+/* Whether assimp picks the importer of `path` by what the file holds:
+ * assimp 5.2's Importer::ReadFile (code/Common/Importer.cpp at v5.2.5)
+ * gives a file to the one importer that lists an extension ending its name
+ * (compared without case), whatever the file holds; when none does, or
+ * several do (.gltf: the glTF 1 and 2 importers), it asks those, then
+ * every importer in turn, whether the file's first bytes look like theirs,
+ * so any importer may take it (a .gltf file holding an OFF header went to
+ * assimp's OFF importer, which asked for 68 GB: found by fuzz/mesh_fuzz,
+ * fuzz/known/gltf_sniffed_off). */
+static int assimp_sniffs(const char *path) {
+  const sh__assimp *ai = sh__assimp_get(path, NULL);
+  if (!ai) return 1;
+  size_t len = strlen(path), claimants = 0, n = ai->import_format_count();
+  for (size_t i = 0; i < n && claimants < 2; i++) {
+    const struct aiImporterDesc *d = ai->import_format_description(i);
+    const char *e = d && d->mFileExtensions ? d->mFileExtensions : "";
+    while (*e) { /* a list of extensions, separated by spaces */
+      size_t k = strcspn(e, " ");
+      if (k && k < len && path[len - k - 1] == '.' && !strncasecmp(path + len - k, e, k)) {
+        claimants++;
+        break;
+      }
+      e += k + (e[k] == ' ');
+    }
+  }
+  return claimants != 1;
+}
+
 /* The formats the core reads itself, never through assimp (whose
  * readers of them loop forever or allocate what a header declares):
  * sh_ply.h's for a file whose first non-blank bytes are "ply" (all assimp
- * asks), sh_off.h's for a file named *.off or, when assimp claims no
- * importer for its extension, whose first bytes are "off" (all assimp asks
- * then). NULL for any other file. */
+ * asks), sh_off.h's for a file named *.off or, when assimp picks the
+ * importer by the file's bytes (assimp_sniffs), whose first bytes are
+ * "off" (all assimp asks then). NULL for any other file. */
 typedef sh_status (*own_reader)(const char *path, const char *data, size_t size,
                                 sh_mesh *mesh, sh_error *err);
-/* Whether one of assimp's importers claims the extension of `path` (then
- * assimp gives the file to it, whatever the file holds; otherwise it asks
- * each importer whether the file's first bytes look like its format). */
-static int assimp_claims(const char *path) {
-  char ext[16], dotted[17];
-  sh_file_extension(path, ext, sizeof ext);
-  snprintf(dotted, sizeof dotted, ".%s", ext);
-  const sh__assimp *ai = sh__assimp_get(path, NULL);
-  return ai && ext[0] && ai->is_extension_supported(dotted);
-}
 
 static own_reader own_reader_of(const char *path, const unsigned char *head, size_t n) {
   if (sh__ply_magic(head, n)) return sh__ply_read;
   char ext[16];
   sh_file_extension(path, ext, sizeof ext);
   if (!strcmp(ext, "off")) return sh__off_read;
-  return sh__off_magic(head, n) && !assimp_claims(path) ? sh__off_read : NULL;
+  return sh__off_magic(head, n) && assimp_sniffs(path) ? sh__off_read : NULL;
 }
 
 /* Reads the mesh `path` of `size` bytes whole, after checking that it lies
@@ -372,22 +392,49 @@ static sh_status load_own(const char *path, const char *root, long long size,
   return st;
 }
 
+/* Whether assimp's OBJ importer, asked whether it reads a file, says yes
+ * to its first bytes `head` (ObjFileImporter::CanRead at v5.2.5, through
+ * BaseImporter::SearchFileHeaderForToken): in the first 200 bytes, NULs
+ * dropped and in lower case, the first occurrence of one of its tokens
+ * with no letter just before it. */
+static int obj_importer_reads(const char *head, size_t n) {
+  static const char *const tokens[] = {"mtllib", "usemtl", "v ", "vt ", "vn ",
+                                       "o ",     "g ",     "s ", "f "};
+  char buf[201];
+  size_t k = 0;
+  for (size_t i = 0; i < n && i < 200; i++)
+    if (head[i]) buf[k++] = (char)tolower((unsigned char)head[i]);
+  buf[k] = '\0';
+  for (size_t t = 0; t < sizeof tokens / sizeof *tokens; t++) {
+    const char *r = strstr(buf, tokens[t]);
+    if (r && (r == buf || !isalpha((unsigned char)r[-1]))) return 1;
+  }
+  return 0;
+}
+
 /* The checks of what assimp does not bound (sh_gltf_check.h,
  * sh_obj_check.h), for the files its glTF and OBJ importers could take: by
- * their extensions, or, for OBJ, any extension assimp does not claim
- * (then its OBJ importer may take the file by its first lines). */
+ * their extensions, or any file whose importer assimp picks by its bytes
+ * (assimp_sniffs: then those importers may take it by its first lines).
+ * *obj_load tells whether assimp's OBJ importer may read the file, and so
+ * open material libraries: named *.obj, or picked by its bytes, which
+ * that importer says it reads and the glTF importers do not take first
+ * (a glTF's buffers are not material libraries). */
 static sh_status check_before_assimp(const char *path, const char *root, long long size,
-                                     int *obj_candidate, sh_error *err) {
+                                     int *obj_load, sh_error *err) {
   char ext[8];
   sh_file_extension(path, ext, sizeof ext);
-  int gltf = sh__gltf_candidate(path), obj = !strcmp(ext, "obj") || !assimp_claims(path);
-  *obj_candidate = obj;
+  int named_obj = !strcmp(ext, "obj"), sniffed = assimp_sniffs(path);
+  int gltf = sh__gltf_candidate(path) || sniffed, obj = named_obj || sniffed;
+  *obj_load = named_obj;
   if (!gltf && !obj) return SH_OK;
   char *data;
   size_t got;
   sh_status st = read_confined(path, root, size, &data, &got, err);
   if (st == SH_OK && gltf) st = sh__gltf_check(path, data, got, err);
   if (st == SH_OK && obj) st = sh__obj_check(path, data, got, err);
+  if (st == SH_OK && sniffed && !named_obj)
+    *obj_load = obj_importer_reads(data, got) && !sh__gltf_taken(data, got);
   free(data);
   return st;
 }

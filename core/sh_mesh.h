@@ -28,9 +28,11 @@ void sh_mesh_free(sh_mesh *mesh);
  * sh_mesh_free). A PLY file (one whose first non-blank bytes are "ply") is
  * read by sh_ply.h's reader instead, never by assimp's (which loops
  * forever on some files), and an OFF file (named *.off, or whose first
- * bytes are "off" if assimp knows no other format by its extension) by
- * sh_off.h's (assimp's allocates what its header declares); a glTF file
- * is checked by sh_gltf_check.h before assimp reads it, an OBJ file's
+ * bytes are "off" if assimp would pick its importer by the file's bytes:
+ * when no importer, or several, list its extension) by sh_off.h's
+ * (assimp's allocates what its header declares); a glTF file (or any file
+ * assimp would pick an importer for by its bytes) is checked by
+ * sh_gltf_check.h before assimp reads it, an OBJ file's (the same)
  * polygons and its material libraries (a texture map before any newmtl,
  * which crashed assimp) by sh_obj_check.h. assimp may read the files of a load 16 times
  * over their size (plus 1 MiB) at most: a file named again and again (one

@@ -32,13 +32,11 @@ static char *polygon(int n, int wrap) {
   return text;
 }
 
-/* An OBJ named after `library` (its .mtl replaced by .obj), whose lines
- * `head` come before a triangle, is refused for the library's line `line`;
- * `what` says which case. */
-static void expect_library_error(const char *library, const char *head, int line,
-                                 const char *what) {
-  char obj[64], text[256];
-  snprintf(obj, sizeof obj, "%.*s.obj", (int)(strlen(library) - 4), library);
+/* The OBJ `obj`, whose lines `head` come before a triangle, is refused
+ * for the library's line `line`; `what` says which case. */
+static void expect_library_error_as(const char *obj, const char *library, const char *head,
+                                    int line, const char *what) {
+  char text[256];
   snprintf(text, sizeof text, "%sv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", head);
   sh_mesh m;
   sh_error err = SH_ERROR_INIT;
@@ -47,11 +45,20 @@ static void expect_library_error(const char *library, const char *head, int line
            strstr(err.message, "before the library's first newmtl") && err.line == line &&
            strstr(err.file, library);
   if (!ok)
-    fprintf(stderr, "%s (%s): status %d, '%s' (%s line %d); want the library's line %d\n",
-            obj, what, s, s ? err.message : "", s ? err.file : "", s ? err.line : 0, line);
+    fprintf(stderr, "%s (%s): status %d, '%s' (%s line %d); want the library %s's line %d\n",
+            obj, what, s, s ? err.message : "", s ? err.file : "", s ? err.line : 0, library,
+            line);
   SH_CHECK(ok);
   SH_CHECK(m.positions == NULL && m.ntris == 0);
   sh_error_clear(&err);
+}
+
+/* The same for the OBJ named after `library` (.mtl replaced by .obj). */
+static void expect_library_error(const char *library, const char *head, int line,
+                                 const char *what) {
+  char obj[64];
+  snprintf(obj, sizeof obj, "%.*s.obj", (int)(strlen(library) - 4), library);
+  expect_library_error_as(obj, library, head, line, what);
 }
 
 int main(void) {
@@ -121,6 +128,14 @@ int main(void) {
                          "bump b.png\ndisp d.png\nnorm n.png\na 0.5\n"
                          "newmtl red\nmap_Ke e.png\n");
   expect_tris("late.obj", "mtllib late.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n", 1, 3);
+  /* Files whose importer assimp picks by their bytes (an extension no
+   * importer lists, or several: .gltf) are OBJ files if its OBJ importer
+   * says so: checked alike. */
+  text = polygon(SH_OBJ_MAX_CORNERS + 1, 0);
+  if (text) expect_text_at("long.gltf", text, 5, "a face of 4097 corners");
+  free(text);
+  expect_library_error_as("sniffed.gltf", "early.mtl", "mtllib early.mtl\n", 2, "sniffed");
+  expect_library_error_as("sniffed.mesh_data", "early.mtl", "mtllib early.mtl\n", 2, "sniffed");
   expect_tris("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n 3 4\n", 2, 4);
   SH_TEST_DONE();
 }

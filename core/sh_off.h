@@ -44,8 +44,9 @@
 
 /* Whether a file starting with these bytes may be an OFF file without
  * ending in ".off": its first three bytes are "off" in any case, which is
- * all assimp asks before it hands a file of an extension it does not know
- * to its OFF importer. */
+ * all assimp asks before it hands a file to its OFF importer when it
+ * picks the importer by the file's bytes (no importer, or several, list
+ * the file's extension: sh_mesh.c's assimp_sniffs). */
 int sh__off_magic(const unsigned char *head, size_t n);
 
 /* Reads the OFF file `path`, whose `size` bytes are `data` (with a NUL

@@ -1,5 +1,5 @@
 /* Tests of sh_off.h through sh_mesh_load (which sends files named *.off,
- * and files of extensions assimp does not know whose first bytes are
+ * and files whose importer assimp picks by their bytes, whose first bytes are
  * "off", to it): the header's variants (no keyword, COFF, NOFF, STOFF,
  * 4OFF, nOFF, counts on the keyword's line), comments, polygons; and the
  * file on which Debian's assimp 5.2 OFF importer asked for 40 GB
@@ -53,6 +53,20 @@ int main(void) {
   snprintf(text, sizeof text, "OFF\n%s", TET);
   expect_tris("tet.mesh_data", text, 4, 4);
   expect_tris("upper.OFF", TET, 4, 4);
+  /* assimp picks the importer of a .gltf file by its bytes (two importers
+   * list the extension): an OFF header there went to its OFF importer,
+   * which asked for 68 GB (fuzz/known/gltf_sniffed_off, found by
+   * mesh_fuzz), so such a file is this reader's too. */
+  snprintf(text, sizeof text, "OFF\n%s", TET);
+  expect_tris("tet.gltf", text, 4, 4);
+  expect_text_at("many_vertices.gltf", "OFF\n2000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                 2, "declares 2000000000 vertices");
+  {
+    unsigned char known[256];
+    size_t k = read_known("gltf_sniffed_off", known, sizeof known);
+    SH_CHECK(k > 1);
+    if (k > 1) expect_error_at("sniffed_off.gltf", known + 1, k - 1, 2, "the face count");
+  }
 
   /* The input mesh_fuzz found (fuzz/known/off_alloc; its first byte picks
    * the format in the harness): a vertex count of 125 digits, which
