@@ -4,6 +4,7 @@
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #ifndef SH_ASSIMP_SONAME
 #define SH_ASSIMP_SONAME "libassimp.so.5"
@@ -27,17 +28,29 @@ static void sh__assimp_load(void) {
   *(void **)&sh__assimp_fns.import_file_ex = dlsym(h, "aiImportFileEx");
   *(void **)&sh__assimp_fns.get_error_string = dlsym(h, "aiGetErrorString");
   *(void **)&sh__assimp_fns.release_import = dlsym(h, "aiReleaseImport");
-  *(void **)&sh__assimp_fns.import_format_count = dlsym(h, "aiGetImportFormatCount");
-  *(void **)&sh__assimp_fns.import_format_description =
-      dlsym(h, "aiGetImportFormatDescription");
+  size_t (*format_count)(void);
+  const struct aiImporterDesc *(*format_description)(size_t index);
+  *(void **)&format_count = dlsym(h, "aiGetImportFormatCount");
+  *(void **)&format_description = dlsym(h, "aiGetImportFormatDescription");
   if (!sh__assimp_fns.import_file_ex || !sh__assimp_fns.get_error_string ||
-      !sh__assimp_fns.release_import || !sh__assimp_fns.import_format_count ||
-      !sh__assimp_fns.import_format_description) {
+      !sh__assimp_fns.release_import || !format_count || !format_description) {
     snprintf(sh__assimp_why, sizeof sh__assimp_why,
              "it lacks aiImportFileEx, aiGetErrorString, aiReleaseImport, "
              "aiGetImportFormatCount or aiGetImportFormatDescription");
     return;
   }
+  size_t n = format_count();
+  const char **ext = calloc(n ? n : 1, sizeof *ext);
+  if (!ext) {
+    snprintf(sh__assimp_why, sizeof sh__assimp_why, "out of memory");
+    return;
+  }
+  for (size_t i = 0; i < n; i++) {
+    const struct aiImporterDesc *d = format_description(i);
+    ext[i] = d && d->mFileExtensions ? d->mFileExtensions : "";
+  }
+  sh__assimp_fns.nformats = n;
+  sh__assimp_fns.format_extensions = ext;
   sh__assimp_ok = 1;
 }
 

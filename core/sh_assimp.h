@@ -15,15 +15,20 @@
 #include <assimp/cfileio.h>
 #include <assimp/cimport.h>
 
-/* The five functions sh_mesh.c calls, with assimp's signatures. */
+/* What sh_mesh.c uses: three functions, with assimp's signatures, and the
+ * importers' extensions. */
 typedef struct sh__assimp {
   const struct aiScene *(*import_file_ex)(const char *file, unsigned flags,
                                           struct aiFileIO *fs);
   const char *(*get_error_string)(void);
   void (*release_import)(const struct aiScene *scene);
-  /* The importers, and each one's description (its mFileExtensions). */
-  size_t (*import_format_count)(void);
-  const struct aiImporterDesc *(*import_format_description)(size_t index);
+  /* Each importer's extensions (its aiImporterDesc's mFileExtensions:
+   * "gltf glb", separated by spaces), `nformats` of them, read once when
+   * the library is loaded (aiGetImportFormatDescription constructs an
+   * Importer, every importer with it, on each call). Owned by this module
+   * and assimp, for the life of the process. */
+  size_t nformats;
+  const char **format_extensions;
 } sh__assimp;
 
 /* Loads assimp on first use (thread-safe) and returns its functions, or

@@ -219,9 +219,7 @@ static uint32_t le32(const unsigned char *p) {
   return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-int sh__gltf_taken(const char *data, size_t size) {
-  const unsigned char *u = (const unsigned char *)data;
-  if (size >= 4 && !memcmp(data, "glTF", 4)) return size >= 20 && le32(u + 12) <= size - 20;
+int sh__gltf_json_text(const char *data, size_t size) {
   size_t lead = 0;
   while (lead < size && data[lead] && strchr(" \t\r\n", data[lead])) lead++;
   return lead < size && data[lead] == '{';

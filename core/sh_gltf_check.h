@@ -34,13 +34,14 @@
  * checks, besides, every file whose importer assimp picks by its bytes.) */
 int sh__gltf_candidate(const char *path);
 
-/* Whether the `size` bytes `data` are what sh__gltf_check parses: JSON
- * (its first non-blank byte is '{') or a binary glTF whose JSON chunk lies
- * in the file. Such a file that passed the check is valid JSON, none of
- * whose lines can begin with an OBJ statement (JSON's strings hold no line
- * ends), so assimp's OBJ importer, if it took the file after the glTF
- * importers refused it, would open no material library. */
-int sh__gltf_taken(const char *data, size_t size);
+/* Whether the `size` bytes `data` are JSON text to sh__gltf_check (its
+ * first non-blank byte is '{'). Such a file that passed the check is valid
+ * JSON, none of whose lines can begin with an OBJ statement (JSON's strings
+ * hold no line ends, and nothing follows the value), so assimp's OBJ
+ * importer, if it took the file after the glTF importers refused it,
+ * would open no material library. (Not so a binary glTF: its binary chunk
+ * may hold anything.) */
+int sh__gltf_json_text(const char *data, size_t size);
 
 /* Checks the glTF file `path`, whose `size` bytes are `data`: SH_OK, or
  * SH_ERR_MESH naming the file, with the line, column and key path of the

@@ -108,8 +108,14 @@ static int fs_library_ok(confined_fs *fs, const char *name, FILE *fp, long long 
     return 0;
   }
   size_t got = fread(data, 1, (size_t)size, fp);
-  int ok = !ferror(fp) && fseek(fp, 0, SEEK_SET) == 0 &&
-           sh__mtl_check(fs->mesh, name, data, got, &fs->library) == SH_OK;
+  int ok;
+  if (ferror(fp) || fseek(fp, 0, SEEK_SET) != 0) {
+    sh_error_set(&fs->library, SH_ERR_IO, "cannot load mesh '%s': cannot read its material "
+                 "library '%s'", fs->mesh, name);
+    ok = 0;
+  } else {
+    ok = sh__mtl_check(fs->mesh, name, data, got, &fs->library) == SH_OK;
+  }
   free(data);
   return ok;
 }
@@ -285,10 +291,9 @@ static char *dir_of(const char *path) {
 static int assimp_sniffs(const char *path) {
   const sh__assimp *ai = sh__assimp_get(path, NULL);
   if (!ai) return 1;
-  size_t len = strlen(path), claimants = 0, n = ai->import_format_count();
-  for (size_t i = 0; i < n && claimants < 2; i++) {
-    const struct aiImporterDesc *d = ai->import_format_description(i);
-    const char *e = d && d->mFileExtensions ? d->mFileExtensions : "";
+  size_t len = strlen(path), claimants = 0;
+  for (size_t i = 0; i < ai->nformats && claimants < 2; i++) {
+    const char *e = ai->format_extensions[i];
     while (*e) { /* a list of extensions, separated by spaces */
       size_t k = strcspn(e, " ");
       if (k && k < len && path[len - k - 1] == '.' && !strncasecmp(path + len - k, e, k)) {
@@ -412,14 +417,24 @@ static int obj_importer_reads(const char *head, size_t n) {
   return 0;
 }
 
+/* Whether the `n` bytes at `data` (NULs among them) hold `word`. */
+static int holds(const char *data, size_t n, const char *word) {
+  size_t k = strlen(word);
+  for (size_t i = 0; i + k <= n; i++)
+    if (data[i] == word[0] && !memcmp(data + i, word, k)) return 1;
+  return 0;
+}
+
 /* The checks of what assimp does not bound (sh_gltf_check.h,
  * sh_obj_check.h), for the files its glTF and OBJ importers could take: by
  * their extensions, or any file whose importer assimp picks by its bytes
  * (assimp_sniffs: then those importers may take it by its first lines).
- * *obj_load tells whether assimp's OBJ importer may read the file, and so
- * open material libraries: named *.obj, or picked by its bytes, which
- * that importer says it reads and the glTF importers do not take first
- * (a glTF's buffers are not material libraries). */
+ * *obj_load tells whether assimp's OBJ importer may read the file and open
+ * material libraries: named *.obj, or picked by its bytes, which that
+ * importer says it reads, which is not glTF's JSON text, and which holds
+ * "mtllib" somewhere (the OBJ importer opens libraries for mtllib lines
+ * only). So the files a glTF names (its buffers) are not taken for
+ * material libraries, unless a binary glTF holds "mtllib". */
 static sh_status check_before_assimp(const char *path, const char *root, long long size,
                                      int *obj_load, sh_error *err) {
   char ext[8];
@@ -434,7 +449,8 @@ static sh_status check_before_assimp(const char *path, const char *root, long lo
   if (st == SH_OK && gltf) st = sh__gltf_check(path, data, got, err);
   if (st == SH_OK && obj) st = sh__obj_check(path, data, got, err);
   if (st == SH_OK && sniffed && !named_obj)
-    *obj_load = obj_importer_reads(data, got) && !sh__gltf_taken(data, got);
+    *obj_load = obj_importer_reads(data, got) && !sh__gltf_json_text(data, got) &&
+                holds(data, got, "mtllib");
   free(data);
   return st;
 }
@@ -526,8 +542,9 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
     free_named(fs.named, fs.nnamed);
     if (scene) ai->release_import(scene);
     free(own_root);
+    sh_status st = fs.library.status;
     sh_error_move(err, &fs.library);
-    return SH_ERR_MESH;
+    return st;
   }
   if (fs.overread) {
     free_named(fs.named, fs.nnamed);

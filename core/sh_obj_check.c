@@ -60,6 +60,21 @@ static int mtl_line_end(char c) { return c == '\n' || c == '\r' || c == '\f' || 
 sh_status sh__mtl_check(const char *mesh, const char *path, const char *data,
                         size_t size, sh_error *err) {
   const char *p = data, *end = data + size;
+  const unsigned char *u = (const unsigned char *)data;
+  /* assimp's TextFileToBuffer drops a UTF-8 byte-order mark, and swaps or
+   * converts (with faults) text after a UTF-16 or UTF-32 one. */
+  if (size >= 3 && u[0] == 0xEF && u[1] == 0xBB && u[2] == 0xBF) {
+    p += 3;
+  } else if (size >= 2 && ((u[0] == 0xFE && u[1] == 0xFF) || (u[0] == 0xFF && u[1] == 0xFE) ||
+                           (size >= 4 && !u[0] && !u[1] && u[2] == 0xFE && u[3] == 0xFF))) {
+    sh_error_set(err, SH_ERR_MESH,
+                 "cannot load mesh '%s': its material library '%s' is UTF-16 or UTF-32 "
+                 "(a byte-order mark), which assimp 5.2 converts with faults: save it as "
+                 "UTF-8 or ASCII", mesh, path);
+    sh_error_set_file(err, path);
+    if (err) err->line = 1;
+    return SH_ERR_MESH;
+  }
   long line = 1;
   while (p < end) {
     while (p < end && (*p == ' ' || *p == '\t')) p++;

@@ -49,7 +49,11 @@ sh_status sh__obj_check(const char *path, const char *data, size_t size,
  * which a material is current to the end. Conservative where cheap: every
  * `map_` statement counts, also those assimp does not know (it skips
  * them), and a material made current by the OBJ's own `usemtl` is not
- * counted on. sh_mesh.c checks, once each before assimp reads it, every
+ * counted on. A UTF-8 byte-order mark is skipped, as assimp drops it; a
+ * library starting with a UTF-16 or UTF-32 one is refused (assimp swaps
+ * or converts such text with faults: a swap past the buffer's end, a
+ * conversion it then throws away, so that what it parses is not what
+ * was checked). sh_mesh.c checks, once each before assimp reads it, every
  * file an OBJ load opens besides the mesh (its libraries and the fallback
  * NAME.mtl), and the mesh itself when assimp opens it again while reading
  * it (a mesh naming itself as its library). */

@@ -10,8 +10,10 @@
  * twice, still loads. A texture map before a library's first newmtl,
  * which crashed assimp's material reader (fuzz/known/mtl_no_material: a
  * mesh naming itself as its library), is refused at its line, in a
- * library of its own, in the fallback NAME.mtl and after \r line ends;
- * the same statements after newmtl load. */
+ * library of its own, in the fallback NAME.mtl, after \r line ends and a
+ * UTF-8 byte-order mark, and in files whose importer assimp picks by their
+ * bytes (a .gltf of OBJ lines, a binary glTF header before OBJ lines); a
+ * UTF-16 library is refused; the same statements after newmtl load. */
 #include "sh_mesh_test_util.h"
 
 #include "sh_obj_check.h"
@@ -136,6 +138,46 @@ int main(void) {
   free(text);
   expect_library_error_as("sniffed.gltf", "early.mtl", "mtllib early.mtl\n", 2, "sniffed");
   expect_library_error_as("sniffed.mesh_data", "early.mtl", "mtllib early.mtl\n", 2, "sniffed");
+  /* Byte-order marks: assimp drops a UTF-8 one (the statement after it is
+   * checked; a library starting with one loads) and mangles text after a
+   * UTF-16 or UTF-32 one (refused). */
+  write_text("bom.mtl", "\xEF\xBB\xBFmap_Kd x.png\nnewmtl grey\n");
+  expect_library_error("bom.mtl", "mtllib bom.mtl\n", 1, "UTF-8 byte-order mark");
+  write_text("bom_ok.mtl", "\xEF\xBB\xBFnewmtl grey\nmap_Kd t.png\n");
+  expect_tris("bom_ok.obj", "mtllib bom_ok.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 1, 3);
+  static const char utf16[] = "\xFF\xFEn\0e\0w\0m\0t\0l\0 \0a\0\n\0";
+  write_bytes("utf16.mtl", utf16, sizeof utf16 - 1);
+  {
+    sh_mesh m;
+    sh_error err = SH_ERROR_INIT;
+    sh_status s = sh_mesh_load(
+        write_text("utf16.obj", "mtllib utf16.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), NULL,
+        &m, &err);
+    SH_CHECK(s == SH_ERR_MESH && strstr(err.message, "UTF-16 or UTF-32") &&
+             strstr(err.file, "utf16.mtl"));
+    if (s != SH_ERR_MESH) fprintf(stderr, "utf16.obj: status %d\n", s);
+    sh_error_clear(&err);
+  }
+  /* A binary glTF header whose JSON chunk is empty, then OBJ lines: the
+   * glTF importers refuse it, and assimp's OBJ importer takes it by its
+   * bytes (JSON text could hold no mtllib line; binary glTF can). */
+  {
+    static const char lines[] = "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nmtllib early.mtl\n";
+    unsigned char glb[128] = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 0, 0, 0, 0,
+                              0, 0, 0, 0, 'J', 'S', 'O', 'N'};
+    size_t nglb = 20 + sizeof lines - 1;
+    glb[8] = (unsigned char)nglb;
+    memcpy(glb + 20, lines, sizeof lines - 1);
+    write_bytes("binary.glb", glb, nglb);
+    sh_mesh m;
+    sh_error err = SH_ERROR_INIT;
+    sh_status s = sh_mesh_load(sh_mesh_test_path, NULL, &m, &err);
+    SH_CHECK(s == SH_ERR_MESH && strstr(err.file, "early.mtl") && err.line == 2);
+    if (s != SH_ERR_MESH || !strstr(err.file, "early.mtl"))
+      fprintf(stderr, "binary.glb: status %d, '%s'\n", s, s ? err.message : "");
+    if (s == SH_OK) sh_mesh_free(&m);
+    sh_error_clear(&err);
+  }
   expect_tris("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 \\\n 3 4\n", 2, 4);
   SH_TEST_DONE();
 }
