@@ -229,6 +229,16 @@ sh_status sh__gltf_check(const char *path, const char *data, size_t size, sh_err
   check c = {path, data, size, "", err};
   const unsigned char *u = (const unsigned char *)data;
   if (size >= 4 && !memcmp(data, "glTF", 4)) {
+    char ext[8];
+    sh_file_extension(path, ext, sizeof ext);
+    if (strcmp(ext, "glb")) {
+      /* assimp's glTF importers read binary glTF by the name alone. */
+      sh_error_set(err, SH_ERR_MESH,
+                   "cannot load mesh '%s': it is a binary glTF (GLB), which assimp reads "
+                   "only from a file named *.glb: rename it", path);
+      sh_error_set_file(err, path);
+      return SH_ERR_MESH;
+    }
     /* Binary glTF: a 12-byte header (magic, version, length), then the
      * JSON's length and format (version 1) or type (2), then the JSON.
      * assimp checks the lengths against the file itself (tried by hand:

@@ -186,5 +186,14 @@ int main(void) {
              nbin, POSITIONS, REST);
     expect_tris("external.gltf", json, 1, 3);
   }
+  /* A binary glTF under another name: assimp's glTF importers read binary
+   * glTF by the name alone (a .glb renamed .gltf failed with "aiScene::
+   * mNumMeshes is 0"), so it is refused, saying so. */
+  {
+    static const unsigned char glb[20] = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 20, 0, 0, 0,
+                                          0, 0, 0, 0, 'J', 'S', 'O', 'N'};
+    expect_error("glb_named.gltf", glb, sizeof glb, "a binary glTF (GLB), which assimp reads only from a file named *.glb");
+    expect_error("glb_named.bin", glb, sizeof glb, "rename it");
+  }
   SH_TEST_DONE();
 }

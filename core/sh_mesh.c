@@ -532,7 +532,9 @@ sh_status sh__mesh_load_named(const char *path, const char *root, sh_mesh *mesh,
     sh_status st = sh_error_set(
         err, SH_ERR_MESH,
         "the mesh '%s' names the file '%s', which lies outside the scene's "
-        "directory '%s': files a scene uses must lie in its directory tree",
+        "directory '%s': files a scene uses must lie in its directory tree (copy "
+        "the file into it and change the mesh's reference to it, or remove the "
+        "reference)",
         path, fs.refused, fs.root);
     free(own_root);
     return st;

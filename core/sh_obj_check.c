@@ -84,12 +84,18 @@ sh_status sh__mtl_check(const char *mesh, const char *path, const char *data,
     if (n >= 2 && (p[0] == 'n' || p[0] == 'N') && p[1] == 'e') return SH_OK; /* newmtl */
     if (n && (p[0] == 'a' || mtl_is(p, n, "map_") || mtl_is(p, n, "bump") ||
               mtl_is(p, n, "disp") || mtl_is(p, n, "norm") || mtl_is(p, n, "Norm"))) {
+      /* Its keyword, if it is short printable ASCII. */
+      size_t k = 0;
+      while (k < n && k < 17 && p[k] > ' ' && p[k] < 127) k++;
+      int show = k < 17 && (k == n || p[k] == ' ' || p[k] == '\t');
       sh_error_set(err, SH_ERR_MESH,
-                   "cannot load mesh '%s': its material library '%s', line %ld: %s "
+                   "cannot load mesh '%s': its material library '%s', line %ld: %s%s%.*s%s "
                    "before the library's first newmtl (it belongs to a material, and "
-                   "assimp's reader would write it to none)",
+                   "assimp's reader would write it to none): move it below the newmtl of "
+                   "its material, or delete it",
                    mesh, path, line,
-                   p[0] == 'a' ? "an 'a' statement (anisotropy)" : "a texture map");
+                   p[0] == 'a' ? "an 'a' statement (anisotropy)" : "a texture map",
+                   show ? " ('" : "", show ? (int)k : 0, p, show ? "')" : "");
       sh_error_set_file(err, path);
       if (err) err->line = (int)line;
       return SH_ERR_MESH;

@@ -111,7 +111,7 @@ int main(void) {
   /* Material statements before any material (sh__mtl_check). */
   n = read_known("mtl_no_material", buf, sizeof buf);
   SH_CHECK(n > 1);
-  if (n > 1) expect_error_at("m.obj", buf + 1, n - 1, 1, "a texture map before the library's first newmtl");
+  if (n > 1) expect_error_at("m.obj", buf + 1, n - 1, 1, "a texture map ('map_Ke') before the library's first newmtl");
   static const char *const early[] = {"map_Kd tex.png", "  map_Ke", "bump b.png", "disp d.png",
                                       "norm n.png", "Norm n.png", "map_Kd -bm 1 x.png",
                                       "a 0.5"};

@@ -196,6 +196,19 @@ sed "s|\"n.map0.png\"|\"$out/n.map0.png\"|" "$out/n.json" >"$out/abs.json"
 "$tool" "$out/abs.json" --to json -o "$out/x.json" 2>"$dir/err"; check "an absolute file name" 2 $?
 grep -q "lights\[0\].light_map.image: the file name '.*' is absolute" "$dir/err" \
   || { echo "FAIL: absolute-name message: $(cat "$dir/err")"; fail=1; }
+# A mesh that names other files (an OBJ's material library) is not
+# copied: the copy would not find them; the export is refused (exit 2,
+# nothing written) unless it is written where the mesh's tree is.
+mkdir -p "$dir/named"
+printf 'newmtl grey\nKd 0.5 0.5 0.5\n' >"$dir/named/m.mtl"
+printf 'mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl grey\nf 1 2 3\n' >"$dir/named/m.obj"
+python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); d["shapes"].append({"type":"mesh","material":"floor","file":"m.obj"}); json.dump(d,open(sys.argv[2],"w"))' \
+  "$data/lambert_floor.json" "$dir/named/s.json"
+"$tool" "$dir/named/s.json" --to json -o "$out/named.json" 2>"$dir/err"; check "json export of a mesh naming files, elsewhere" 2 $?
+grep -q "names other files" "$dir/err" || { echo "FAIL: named-files message: $(cat "$dir/err")"; fail=1; }
+[ ! -e "$out/named.json" ] || { echo "FAIL: a refused export wrote its scene"; fail=1; }
+"$tool" "$dir/named/s.json" --to json -o "$dir/named/e.json" 2>/dev/null; check "json export of a mesh naming files, in its tree" 0 $?
+grep -q '"file": "m.obj"' "$dir/named/e.json" || { echo "FAIL: the mesh is not referred to: $(grep file "$dir/named/e.json")"; fail=1; }
 rm -f "$out"/*
 
 # --strict refuses approximations and writes nothing; exact exports pass.

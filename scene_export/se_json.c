@@ -21,6 +21,7 @@ typedef struct files {
                      PREFIX.<what><i>.<ext> */
   const char *stem; /* the export's file name without ".json" */
   int failed;     /* out of memory, or a file that cannot be read */
+  sh_status why_status; /* the first failure's status */
   char *why;      /* the first failure's message */
 } files;
 
@@ -33,9 +34,11 @@ static char *copy_name(const char *prefix, const char *what, int i,
   return s;
 }
 
-static void fail(files *f, const char *what, const char *path) {
+/* Records the first failure: `fmt` with the file's kind and path. */
+static void fail_as(files *f, sh_status status, const char *fmt, const char *what,
+                    const char *path) {
   if (!f->failed) {
-    const char *fmt = "cannot copy the %s file '%s' into the export";
+    f->why_status = status;
     int n = snprintf(NULL, 0, fmt, what, path);
     f->why = n >= 0 ? malloc((size_t)n + 1) : NULL;
     if (f->why) snprintf(f->why, (size_t)n + 1, fmt, what, path);
@@ -43,10 +46,16 @@ static void fail(files *f, const char *what, const char *path) {
   f->failed = 1;
 }
 
+static void fail(files *f, const char *what, const char *path) {
+  fail_as(f, SH_ERR_IO, "cannot copy the %s file '%s' into the export", what, path);
+}
+
 /* A file the scene loaded, as the export names it: its path relative to
  * the export's directory if it lies in that tree, else a copy of its bytes
- * written beside the export as STEM.<what><i>.<ext>. */
-static json_t *file_ref(files *f, const char *path, const char *what, int i) {
+ * written beside the export as STEM.<what><i>.<ext>. A file that names
+ * other files (`nnamed`: a glTF's buffers, an OBJ's material library) is
+ * not copied: the copy would not find them, so the export fails. */
+static json_t *file_ref(files *f, const char *path, const char *what, int i, int nnamed) {
   char *real = realpath(path, NULL);
   if (!real) {
     fail(f, what, path);
@@ -57,6 +66,15 @@ static json_t *file_ref(files *f, const char *path, const char *what, int i) {
     json_t *s = json_string(real + n + 1);
     free(real);
     return s;
+  }
+  if (nnamed > 0) {
+    fail_as(f, SH_ERR_SCENE,
+            "the %s file '%s' names other files (a glTF's buffers, an OBJ's material "
+            "library), which a copy beside the export would not find: write the export "
+            "in a directory whose tree holds the mesh (then the export refers to it)",
+            what, path);
+    free(real);
+    return NULL;
   }
   const char *slash = strrchr(real, '/'), *dot = strrchr(real, '.');
   const char *ext = dot && dot > slash + 1 ? dot : "";
@@ -151,7 +169,7 @@ static json_t *light(files *f, const sh_light *l, int i) {
     if (o && l->has_map)
       json_object_set_new(o, "light_map",
                           json_pack("{s:o, s:o}", "image",
-                                    file_ref(f, l->map_file, "map", i),
+                                    file_ref(f, l->map_file, "map", i, 0),
                                     "up", vec(l->map_up)));
     break;
   case SH_LIGHT_DIRECTIONAL:
@@ -163,7 +181,7 @@ static json_t *light(files *f, const sh_light *l, int i) {
     if (o && l->has_map)
       json_object_set_new(o, "light_map",
                           json_pack("{s:o, s:o, s:o, s:o}", "image",
-                                    file_ref(f, l->map_file, "map", i),
+                                    file_ref(f, l->map_file, "map", i, 0),
                                     "origin",
                                     vec(l->map_origin), "u", vec(l->map_u), "v",
                                     vec(l->map_v)));
@@ -195,7 +213,7 @@ static json_t *shape(files *f, const sh_scene *s, const sh_shape *sh,
     if (sh->data)
       json_object_set_new(o, "data", json_string(sh->data));
     else
-      json_object_set_new(o, "file", file_ref(f, sh->file, "mesh", i));
+      json_object_set_new(o, "file", file_ref(f, sh->file, "mesh", i, sh->nnamed));
     break;
   case SH_SHAPE_SPHERE:
     json_object_set_new(o, "center", vec(sh->center));
@@ -217,7 +235,7 @@ static json_t *shape(files *f, const sh_scene *s, const sh_shape *sh,
     json_object_set_new(o, "v", vec(sh->v));
     break;
   case SH_SHAPE_HEIGHTFIELD:
-    json_object_set_new(o, "image", file_ref(f, sh->file, "height", i));
+    json_object_set_new(o, "image", file_ref(f, sh->file, "height", i, 0));
     json_object_set_new(o, "min", vec(sh->bmin));
     json_object_set_new(o, "max", vec(sh->bmax));
     break;
@@ -248,7 +266,7 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
                         sh_error *err) {
   (void)opt;
   (void)notes;
-  files f = {out, NULL, NULL, NULL, 0, NULL};
+  files f = {out, NULL, NULL, NULL, 0, SH_OK, NULL};
   size_t n = strlen(json_path);
   const char *slash = strrchr(json_path, '/');
   /* The export's directory: the part before the last slash ("/" for the
@@ -306,7 +324,7 @@ sh_status se_json_build(const sh_scene *s, const se_options *opt,
   free(f.dir);
   free(f.prefix);
   if (f.failed) {
-    sh_status st = sh_error_set(err, f.why ? SH_ERR_IO : SH_ERR_NOMEM, "%s",
+    sh_status st = sh_error_set(err, f.why ? f.why_status : SH_ERR_NOMEM, "%s",
                                 f.why ? f.why : "out of memory");
     free(f.why);
     return st;
